@@ -1,0 +1,1 @@
+"""The snail cylinder's equations of motion, scenes, trajectories and the ``snail`` command."""

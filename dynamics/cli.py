@@ -1,0 +1,187 @@
+"""The ``snail`` command: a thin layer that parses, calls the Python API and reports.
+
+Exit status: 0 success, 1 a failed computation, 2 bad input (with a message that
+names the offending value, and no traceback). Subcommands that live in packages
+above ``dynamics`` (``validation``) register through the ``snail.commands``
+entry-point group, so that ``dynamics`` never imports them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import re
+import sys
+import time
+from importlib.metadata import entry_points
+
+__all__ = ["UsageError", "main"]
+
+# A value that argparse would otherwise take for an option: -1e-6, -.5, -inf ...
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|nan)$", re.IGNORECASE)
+
+# The steel apparatus of the paper (Table 1): 200 cSt silicone oil, inner length 10.35 cm.
+STEEL_OIL_NU = 2.0e-4  # m^2/s
+STEEL_OIL_RHO = 960.0  # kg/m^3
+STEEL_LENGTH = 0.1035  # m
+
+
+class UsageError(ValueError):
+    """Bad input from the command line; reported with exit status 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _join_negative_values(argv: list[str]) -> list[str]:
+    """Turn ``--flag -1e-6`` into ``--flag=-1e-6``: argparse reads -1e-6 as an option."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        token = argv[i]
+        if (token.startswith("--") and "=" not in token and i + 1 < len(argv)
+                and _NEGATIVE_NUMBER.match(argv[i + 1])):
+            out.append(f"{token}={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(token)
+            i += 1
+    return out
+
+
+def _number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        msg = f"not a number: {text!r}"
+        raise argparse.ArgumentTypeError(msg) from None
+
+
+def _add_forces(subparsers) -> None:
+    p = subparsers.add_parser(
+        "forces", help="fluid force and torque on the inner cylinder",
+        description="Fluid force f_eps, f_chi (N) and torque T_a (N m) on the inner cylinder, "
+                    "whole length, for one instant. SI units throughout.")
+    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "all"],
+                   help="force model (default closed-form); all: every model and their differences")
+    p.add_argument("--a", type=_number, required=True, help="inner radius (m)")
+    p.add_argument("--b", type=_number, required=True, help="outer radius (m)")
+    p.add_argument("--kappa", type=_number, required=True, help="eccentricity eps/(b - a), in [0, 1)")
+    p.add_argument("--eps-dot", type=_number, default=0.0, help="d eps/dt (m/s), default 0")
+    p.add_argument("--chi-dot", type=_number, default=0.0, help="d chi/dt (rad/s), default 0")
+    p.add_argument("--omega-a", type=_number, default=0.0, help="Omega_a (rad/s), default 0")
+    p.add_argument("--omega-b", type=_number, default=0.0, help="Omega_b (rad/s), default 0")
+    p.add_argument("--nu", type=_number, default=STEEL_OIL_NU,
+                   help=f"kinematic viscosity (m^2/s), default {STEEL_OIL_NU:g} (200 cSt)")
+    p.add_argument("--rho", type=_number, default=STEEL_OIL_RHO,
+                   help=f"fluid density (kg/m^3), default {STEEL_OIL_RHO:g}")
+    p.add_argument("--length", type=_number, default=STEEL_LENGTH,
+                   help=f"axial length (m), default {STEEL_LENGTH:g}")
+    p.add_argument("--n", type=int, default=32, help="Reynolds: cells around the gap (default 32)")
+    p.add_argument("--grid", default="sommerfeld", choices=["sommerfeld", "uniform"],
+                   help="Reynolds: grid uniform in the Sommerfeld angle or in theta")
+    p.add_argument("--profile", default="thin", choices=["thin", "eccentric"],
+                   help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=_run_forces)
+
+
+def _timed(fn):
+    """Result of ``fn()`` and its wall time, after one call that loads the compiled kernels."""
+    fn()
+    start = time.perf_counter()
+    result = fn()
+    return result, time.perf_counter() - start
+
+
+def _relative_differences(f, ref) -> dict[str, float]:
+    """Differences from ``ref``: forces against the size of the reference force, torque against its torque."""
+    force_scale = math.hypot(ref.f_eps, ref.f_chi)
+    out = {}
+    for name, scale in (("f_eps", force_scale), ("f_chi", force_scale), ("T_a", abs(ref.T_a))):
+        diff = abs(getattr(f, name) - getattr(ref, name))
+        out[name] = diff / scale if scale > 0 else diff
+    return out
+
+
+def _run_forces(args) -> int:
+    from lubrication import Annulus, Fluid, Motion, fluid_forces
+
+    try:
+        annulus = Annulus.from_kappa(args.a, args.b, args.kappa, length=args.length)
+        motion = Motion(eps_dot=args.eps_dot, chi_dot=args.chi_dot,
+                        omega_a=args.omega_a, omega_b=args.omega_b)
+        fluid = Fluid(nu=args.nu, rho=args.rho)
+        options = {"n": args.n, "grid": args.grid, "profile": args.profile}
+        models = ["closed-form", "reynolds"] if args.model == "all" else [args.model]
+        results = []
+        for model in models:
+            opts = options if model == "reynolds" else {}
+            f, seconds = _timed(lambda m=model, o=opts: fluid_forces(annulus, motion, fluid, m, **o))
+            row = {"model": model, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds}
+            if model == "reynolds":
+                row.update(options)
+            results.append((f, row))
+    except ValueError as err:
+        raise UsageError(str(err)) from err
+    if len(results) == 1:
+        out = results[0][1]
+    else:
+        # the numerical solve is the reference the closed forms are checked against
+        ref = results[-1][0]
+        for f, row in results:
+            row["relative_difference"] = _relative_differences(f, ref)
+        out = dict(results[-1][1])
+        out.update(model="all", reference="reynolds", wall_time_s=sum(r["wall_time_s"] for _, r in results),
+                   models=[row for _, row in results])
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        _print_forces_table(annulus, [row for _, row in results])
+    return 0
+
+
+def _print_forces_table(annulus, rows) -> None:
+    print(f"a = {annulus.a:g} m, b = {annulus.b:g} m, kappa = {annulus.kappa:.12g}, "
+          f"delta/a = {annulus.delta_over_a:.4g}, length = {annulus.length:g} m")
+    print(f"{'model':<12} {'f_eps (N)':>16} {'f_chi (N)':>16} {'T_a (N m)':>16} {'time (s)':>10}")
+    for row in rows:
+        print(f"{row['model']:<12} {row['f_eps']:>16.9e} {row['f_chi']:>16.9e} {row['T_a']:>16.9e} "
+              f"{row['wall_time_s']:>10.2e}")
+    for row in rows:
+        diff = row.get("relative_difference")
+        if diff and row["model"] != "reynolds":
+            print(f"{row['model']} vs reynolds: " + ", ".join(f"{k} {v:.2e}" for k, v in diff.items()))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="snail", description="The snail cylinder: fluid forces, trajectories, validation.")
+    subparsers = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    _add_forces(subparsers)
+    for ep in entry_points(group="snail.commands"):
+        ep.load()(subparsers)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = _join_negative_values(sys.argv[1:] if argv is None else list(argv))
+    args = build_parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except UsageError as err:
+        print(f"snail {args.command}: error: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"snail {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except Exception as err:  # a failed computation: say what failed, keep the exit status apart
+        print(f"snail {args.command}: computation failed: {type(err).__name__}: {err}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,211 @@
+"""numba kernels of the Reynolds solver.
+
+Only float64 arrays, ints and floats cross this boundary; checking inputs and
+choosing the kernel is the job of :mod:`lubrication.reynolds`.
+
+The grid. The gap angle theta is parametrised by psi, uniform on (-pi, pi],
+through the Sommerfeld substitution with a grid parameter kappa_g,
+
+    1 - kappa_g cos(theta) = (1 - kappa_g^2) / (1 + kappa_g cos(psi)),
+
+so that, with D = 1 + kappa_g cos(psi) and zeta_g = sqrt(1 - kappa_g^2),
+
+    cos(theta) = (kappa_g + cos psi) / D,   sin(theta) = zeta_g sin(psi) / D,
+    1 - cos(theta) = (1 - kappa_g)(1 - cos psi) / D,   dtheta/dpsi = zeta_g / D.
+
+kappa_g = 0 is the uniform theta grid; kappa_g = kappa clusters the points at the
+narrowest gap so that every thin-gap integrand becomes a trigonometric
+polynomial in psi. Everything is algebraic in cos(psi), sin(psi), 1 - cos(psi)
+and 1 + cos(psi), which are tabulated once per grid: no transcendental function
+is evaluated per solve, and no difference of nearly equal numbers is formed as
+kappa_g -> 1.
+
+The discretisation. Each of the N cells [psi_j, psi_j+1] carries m Gauss-Legendre
+points. In one dimension the flux q = h (U_a + U_b)/2 - h^3 p'/(12 mu a) obeys
+dq/dtheta = -dQ/dtheta, where Q(theta) is the antiderivative of the squeeze
+source (a dh/dt for the thin gap), so q = qhat - Q(theta) with one constant
+qhat. Integrating p' = 12 mu a phi' over cell j gives the exact finite-volume
+relation between nodal pressures,
+
+    phi_{j+1} - phi_j = (U/2) A_j + B_j - qhat G_j,
+    A_j = int h^-2,  G_j = int h^-3,  B_j = int Q h^-3   (over cell j),
+
+U = U_a + U_b: a vertex-centred scheme whose face conductances 1/G_j are the
+exact cell integrals rather than h^3 sampled at a point. Periodicity fixes qhat.
+Nodal pressures then carry only the cell quadrature error, O(dpsi^(2m)); the
+force and torque are integrals over the whole period, for which the composite
+rule converges spectrally (exactly, for a trigonometric polynomial of low enough
+degree). Cavitation keeps the same cells and conductances and changes only how
+the nodal pressures are found.
+
+Forces, per unit length, by parts (p is periodic), (B13)-(B15):
+
+    f_eps = -a oint p cos = a oint p' sin = 12 mu a^2 oint phi' sin(theta)
+    f_chi = -a oint p sin = -a oint p' cos = 12 mu a^2 oint phi' omega
+    T_a   = a^2 mu oint [(U_b - U_a)/h - 6 phi' h]
+
+where omega is -cos(theta) or 1 - cos(theta): they differ by a constant and
+oint phi' = 0. For kappa >= 1/2 the weight 1 - cos(theta), which vanishes where
+h is smallest, removes a cancellation of relative size 1 - kappa^2; for
+kappa < 1/2, -cos(theta) removes one of relative size kappa (the rotation
+pressure itself is O(kappa)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# Gap profiles known to the kernel; TABULATED takes h and Q from arrays.
+THIN, ECCENTRIC, TABULATED = 0, 1, 2
+
+
+@njit(cache=True, nogil=True, inline="always")
+def eccentric_gap(a, b, eps, omk, s, v, eps_dot):
+    """Exact gap between the circles along the ray from A, and its squeeze flux.
+
+    h = sqrt(b^2 - eps^2 sin^2) - eps cos - a, written without cancellation as
+    delta (1 - kappa) + eps (1 - cos) - eps^2 sin^2 / (sqrt(b^2 - eps^2 sin^2) + b).
+    Mass in the sector is the area int (a h + h^2/2) dtheta, so the squeeze
+    source is d/dt (r^2/2) with r = a + h; its antiderivative in theta is
+    Q = eps' (eps sin cos - sin sqrt(b^2 - eps^2 sin^2)), periodic, which makes
+    mass conservation exact.
+    """
+    root = math.sqrt(b * b - (eps * s) ** 2)
+    h = (b - a) * omk + eps * v - (eps * s) ** 2 / (root + b)
+    q = eps_dot * s * (eps * (1.0 - v) - root)
+    return h, q
+
+
+@njit(cache=True, nogil=True)
+def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
+         cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, phi_out):
+    """Solve the full-film Reynolds equation; return oint phi' sin, oint phi' omega, torque sum.
+
+    Parameters
+    ----------
+    kind : int
+        THIN (h = delta (1 - kappa cos)), ECCENTRIC or TABULATED.
+    a, b : float
+        Radii (m).
+    kappa, omk : float
+        Eccentricity ratio and 1 - kappa; for TABULATED, the profile's own
+        (h_max - h_min)/(h_max + h_min), which only chooses the f_chi weight.
+    eps_dot : float
+        Rate of change of the centre distance (m/s).
+    u_a, u_b : float
+        Surface speeds of the inner and outer wall in the frame of the line of centres (m/s).
+    kappa_g, omk_g : float
+        Grid parameter and 1 - kappa_g.
+    cpsi, spsi, vpsi, ppsi, wpsi : ndarray, shape (N*m,)
+        cos, sin, 1 - cos, 1 + cos of psi and the quadrature weights at the points.
+    m : int
+        Points per cell.
+    h_tab, q_tab : ndarray, shape (N*m,) or (0,)
+        Gap and squeeze flux at the points, for TABULATED.
+    phi_out : ndarray, shape (N,) or (0,)
+        When of length N, receives phi = p/(12 mu a) at the nodes psi_j, up to a constant.
+
+    Returns
+    -------
+    i_sin, i_chi, i_torque : float
+        oint phi' sin(theta), oint phi' omega, and
+        oint [(u_b - u_a)/h - 6 phi' h], all dtheta.
+    """
+    n_cells = spsi.size // m
+    zeta_g = math.sqrt(omk_g * (1.0 + kappa_g))
+    delta = b - a
+    inv_delta = 1.0 / delta
+    eps = kappa * delta
+    want_phi = phi_out.size == n_cells
+    # per-cell integrals, kept only for the nodal pressure
+    a_cell = np.empty(n_cells if want_phi else 0)
+    g_cell = np.empty(n_cells if want_phi else 0)
+    b_cell = np.empty(n_cells if want_phi else 0)
+    vers_weight = kappa >= 0.5
+    # whole-period sums: int h^-1, h^-2, h^-3, Q h^-3, Q h^-2, and sin-, omega-weighted ones
+    s1 = s2 = s3 = sq3 = sq2 = 0.0
+    sin2 = sin3 = sinq3 = 0.0
+    om2 = om3 = omq3 = 0.0
+    k = 0
+    for j in range(n_cells):
+        c_a = c_g = c_b = 0.0
+        for _ in range(m):
+            d = omk_g + kappa_g * ppsi[k]
+            if kind == THIN:
+                # h = delta x / d: one division gives both 1/d and 1/h
+                x = omk * d + kappa * omk_g * vpsi[k]
+                inv = 1.0 / (d * x)
+                r = x * inv
+                r1 = d * d * inv * inv_delta
+                s = zeta_g * spsi[k] * r
+                v = omk_g * vpsi[k] * r
+                q = -a * eps_dot * s
+            else:
+                r = 1.0 / d
+                s = zeta_g * spsi[k] * r
+                v = omk_g * vpsi[k] * r
+                if kind == ECCENTRIC:
+                    h, q = eccentric_gap(a, b, eps, omk, s, v, eps_dot)
+                else:
+                    h = h_tab[k]
+                    q = q_tab[k]
+                r1 = 1.0 / h
+            jac = zeta_g * r
+            om = v if vers_weight else -(kappa_g + cpsi[k]) * r
+            w = wpsi[k] * jac
+            w1 = w * r1
+            w2 = w1 * r1
+            w3 = w2 * r1
+            s1 += w1
+            s2 += w2
+            s3 += w3
+            sq3 += q * w3
+            sq2 += q * w2
+            sin2 += s * w2
+            sin3 += s * w3
+            sinq3 += s * q * w3
+            om2 += om * w2
+            om3 += om * w3
+            omq3 += om * q * w3
+            c_a += w2
+            c_g += w3
+            c_b += q * w3
+            k += 1
+        if want_phi:
+            a_cell[j] = c_a
+            g_cell[j] = c_g
+            b_cell[j] = c_b
+    half_u = 0.5 * (u_a + u_b)
+    # periodicity of phi: sum over cells of (U/2) A_j + B_j - qhat G_j = 0
+    qhat = (half_u * s2 + sq3) / s3
+    i_sin = half_u * sin2 + sinq3 - qhat * sin3
+    i_chi = half_u * om2 + omq3 - qhat * om3
+    i_torque = (u_b - u_a) * s1 - 6.0 * (half_u * s1 + sq2 - qhat * s2)
+    if want_phi:
+        phi = 0.0
+        for j in range(n_cells):
+            phi_out[j] = phi
+            phi += half_u * a_cell[j] + b_cell[j] - qhat * g_cell[j]
+    return i_sin, i_chi, i_torque
+
+
+@njit(cache=True, nogil=True)
+def film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
+                cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, cos_c, sin_c, phi_out):
+    """f_eps, f_chi (N) and T_a (N m) over the length, from :func:`film`.
+
+    ``w_a``, ``w_b`` are the rotation rates relative to the line of centres; the
+    walls move at a w_a and a w_b for the thin (leading-order) and tabulated
+    gaps, at a w_a and b w_b for the exact eccentric gap. ``cos_c``, ``sin_c``
+    rotate the force from a grid centred at angle c back to the line of centres.
+    """
+    u_b = (b if kind == ECCENTRIC else a) * w_b
+    i_sin, i_chi, i_torque = film(kind, a, b, kappa, omk, eps_dot, a * w_a, u_b, kappa_g, omk_g,
+                                  cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, phi_out)
+    scale = 12.0 * mu * a * a * length
+    f_x = scale * i_sin
+    f_y = scale * i_chi
+    return cos_c * f_x - sin_c * f_y, sin_c * f_x + cos_c * f_y, mu * a * a * length * i_torque

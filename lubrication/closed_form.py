@@ -1,0 +1,51 @@
+"""Leading-order lubrication forces (2.5)-(2.7) in closed form.
+
+With the thin gap h = delta (1 - kappa cos theta) the Reynolds equation
+integrates exactly with the integrals (B8)-(B9); per unit length, with
+m''_a nu = pi a^2 mu,
+
+    f_eps = -12 pi mu a^3 eps' / (delta^3 zeta^3)                          (2.5)
+    f_chi =  12 pi mu a^3 kappa (W_a + W_b) / (delta^2 (2 + kappa^2) zeta)  (2.6)
+    T_a   =   4 pi mu a^3 [(1 - kappa^2) W_b - (1 + 2 kappa^2) W_a]
+              / (delta (2 + kappa^2) zeta)                                  (2.7)
+
+where zeta = sqrt(1 - kappa^2), W_a = Omega_a - chi', W_b = Omega_b - chi'.
+(2.7) is written in the form that follows from (B15); the printed text is
+ambiguous there.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .geometry import Annulus, Fluid, FluidForces, Motion
+
+__all__ = ["closed_form_forces", "lubrication_forces"]
+
+
+@njit(cache=True, nogil=True)
+def lubrication_forces(a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """(2.5)-(2.7) for the whole length; ``omk`` is 1 - kappa, kept for precision near contact.
+
+    Returns
+    -------
+    f_eps, f_chi, T_a : float
+        N, N, N m.
+    """
+    zeta = math.sqrt(omk * (1.0 + kappa))
+    c = 4.0 * math.pi * mu * a**3 * length
+    f_eps = -3.0 * c * eps_dot / (delta**3 * zeta**3)
+    f_chi = 3.0 * c * kappa * (w_a + w_b) / (delta**2 * (2.0 + kappa * kappa) * zeta)
+    t_a = c * (omk * (1.0 + kappa) * w_b - (1.0 + 2.0 * kappa * kappa) * w_a) / (
+        delta * (2.0 + kappa * kappa) * zeta)
+    return f_eps, f_chi, t_a
+
+
+def closed_form_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
+    """Closed-form lubrication force and torque (2.5)-(2.7) on the inner cylinder."""
+    f = lubrication_forces(annulus.a, annulus.delta, fluid.mu, annulus.length,
+                           annulus.kappa, annulus.one_minus_kappa,
+                           motion.eps_dot, motion.w_a, motion.w_b)
+    return FluidForces(*f, model="closed-form")

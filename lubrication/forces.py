@@ -1,0 +1,64 @@
+"""One entry point for every force model: geometry + motion + fluid -> (f_eps, f_chi, T_a)."""
+
+from __future__ import annotations
+
+from dataclasses import astuple, dataclass
+
+from .closed_form import closed_form_forces
+from .geometry import Annulus, Fluid, FluidForces, Motion
+from .reynolds import reynolds_forces
+
+__all__ = ["MODELS", "Resistance", "fluid_forces", "resistance"]
+
+MODELS = ("closed-form", "reynolds")
+
+
+def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "closed-form",
+                 **options) -> FluidForces:
+    """Force and torque on the inner cylinder with the chosen model.
+
+    Parameters
+    ----------
+    model : {"closed-form", "reynolds"}
+        Lubrication closed forms (2.5)-(2.7), or the numerical Reynolds solver
+        (``options`` go to :func:`lubrication.reynolds.reynolds_forces`).
+    """
+    if model == "closed-form":
+        if options:
+            msg = f"the closed-form model takes no options, got {', '.join(sorted(options))}"
+            raise ValueError(msg)
+        return closed_form_forces(annulus, motion, fluid)
+    if model == "reynolds":
+        return reynolds_forces(annulus, motion, fluid, **options)
+    msg = f"model must be one of {', '.join(MODELS)}, got {model!r}"
+    raise ValueError(msg)
+
+
+@dataclass(frozen=True)
+class Resistance:
+    """The five resistance coefficients of the inner cylinder, whole length.
+
+    By linearity and the reflection symmetry about the line of centres, a
+    full-film force model is fixed by: f_eps per eps' (N s/m), and f_chi
+    (N s) and T_a (N m s) per unit rotation W_a = Omega_a - chi' and
+    W_b = Omega_b - chi'. Radial motion gives no f_chi or T_a, rotations no f_eps.
+    """
+
+    f_eps_per_eps_dot: float
+    f_chi_per_w_a: float
+    t_a_per_w_a: float
+    f_chi_per_w_b: float
+    t_a_per_w_b: float
+
+    NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
+
+    def as_tuple(self) -> tuple[float, ...]:
+        return astuple(self)
+
+
+def resistance(annulus: Annulus, fluid: Fluid, model: str = "closed-form", **options) -> Resistance:
+    """The five coefficients of :class:`Resistance`, from three unit motions of ``model``."""
+    radial = fluid_forces(annulus, Motion(eps_dot=1.0), fluid, model, **options)
+    inner = fluid_forces(annulus, Motion(omega_a=1.0), fluid, model, **options)
+    outer = fluid_forces(annulus, Motion(omega_b=1.0), fluid, model, **options)
+    return Resistance(radial.f_eps, inner.f_chi, inner.T_a, outer.f_chi, outer.T_a)

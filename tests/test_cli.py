@@ -1,0 +1,85 @@
+"""The ``snail`` command: its JSON contract, negative numbers, and exit status 2 on bad input."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from dynamics.cli import main
+
+GEOMETRY = ["--a", "0.008", "--b", "0.01125"]
+
+
+def run(capsys, *args):
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_forces_json_has_the_contract_keys(capsys):
+    code, out, _ = run(capsys, "forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9",
+                       "--omega-a", "1", "--json")
+    assert code == 0
+    data = json.loads(out)
+    for key in ("model", "f_eps", "f_chi", "T_a", "wall_time_s"):
+        assert key in data
+    assert data["model"] == "reynolds" and data["f_chi"] > 0 and data["T_a"] < 0
+
+
+def test_all_models_with_relative_differences(capsys):
+    code, out, _ = run(capsys, "forces", "--model=all", *GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6",
+                       "--chi-dot", "-2.5E-1", "--omega-b", "-.5", "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert [m["model"] for m in data["models"]] == ["closed-form", "reynolds"]
+    closed = data["models"][0]
+    assert closed["f_eps"] > 0  # the gap opens as eps' < 0: the fluid pulls the cylinder back
+    assert max(closed["relative_difference"].values()) < 1e-12
+
+
+def test_negative_numbers_in_scientific_notation_are_values(capsys):
+    code, out, _ = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6", "--json")
+    assert code == 0 and json.loads(out)["f_eps"] > 0
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--a", "0.02", "--b", "0.01", "--kappa", "0.5"], "b must be greater than a"),
+        ([*GEOMETRY, "--kappa", "1"], "kappa must be in [0, 1)"),
+        ([*GEOMETRY, "--kappa", "0.5", "--nu", "-1e-4"], "nu must be in (0, inf)"),
+        ([*GEOMETRY, "--kappa", "0.5", "--rho", "0"], "rho must be in (0, inf)"),
+        ([*GEOMETRY, "--kappa", "nan"], "kappa must be a finite number"),
+        ([*GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n (cells around the gap)"),
+        ([*GEOMETRY, "--kappa", "abc"], "not a number"),
+        ([*GEOMETRY, "--kappa", "0.5", "--model", "magic"], "invalid choice"),
+        ([*GEOMETRY], "required: --kappa"),
+    ],
+)
+def test_bad_input_exits_2_with_a_message_and_no_traceback(capsys, args, words):
+    with pytest.raises(SystemExit) as exc:  # argparse's own errors exit from inside
+        sys.exit(main(["forces", *args]))
+    out, err = capsys.readouterr()
+    assert exc.value.code == 2
+    assert words in err
+    assert "Traceback" not in err and out == ""
+
+
+def test_console_script_entry_point_and_validate_registration():
+    """The installed command reads the subcommands registered by `validation`."""
+    proc = subprocess.run([sys.executable, "-m", "dynamics.cli", "--help"], capture_output=True, text=True,
+                          check=False)
+    assert proc.returncode == 0
+    assert "forces" in proc.stdout and "validate" in proc.stdout
+
+
+def test_validate_quick_writes_the_report(tmp_path, capsys):
+    out_dir = tmp_path / "report"
+    code, out, _ = run(capsys, "validate", "--quick", "-o", str(out_dir))
+    assert code == 0, out
+    checks = json.loads((out_dir / "validation.json").read_text())
+    assert checks and all({"name", "measured", "reference", "tolerance", "passed"} <= set(c) for c in checks)
+    assert all(c["passed"] for c in checks)
+    assert "Validation report" in (out_dir / "report.md").read_text()
+    assert not list(out_dir.glob(".*.tmp"))  # nothing half-written left behind

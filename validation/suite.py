@@ -1,0 +1,47 @@
+"""Run every group of validation checks and write ``validation.json`` and ``report.md``."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from dynamics.files import write_json, write_text
+
+from . import lubrication_checks
+
+__all__ = ["GROUPS", "run_all"]
+
+# title -> module with run(outdir, quick) -> (checks, figure names, paragraph)
+GROUPS = {
+    "Reynolds solver against the lubrication closed forms": lubrication_checks,
+}
+
+
+def _fmt(x) -> str:
+    return f"{x:.6g}" if isinstance(x, float) else str(x)
+
+
+def run_all(outdir: str | Path, quick: bool = False) -> tuple[list, float]:
+    """Run all groups; write the JSON list of checks and the markdown report into ``outdir``."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    checks, sections = [], []
+    for title, module in GROUPS.items():
+        group_checks, figures, text = module.run(outdir, quick=quick)
+        checks.extend(group_checks)
+        lines = [f"## {title}", "", text, "",
+                 "| check | measured | reference | tolerance | kind | passed |",
+                 "|---|---|---|---|---|---|"]
+        lines += [f"| {c.name} | {_fmt(c.measured)} | {_fmt(c.reference)} | {_fmt(c.tolerance)} | "
+                  f"{c.kind} | {'yes' if c.passed else '**NO**'} |" for c in group_checks]
+        lines += [""] + [f"![{name}]({name})" for name in figures]
+        sections.append("\n".join(lines))
+    seconds = time.perf_counter() - start
+    failed = sum(not c.passed for c in checks)
+    head = ["# Validation report", "",
+            f"{len(checks) - failed} of {len(checks)} checks passed in {seconds:.1f} s"
+            f"{' (quick subset)' if quick else ''}.", ""]
+    write_json(outdir / "validation.json", [c.as_dict() for c in checks])
+    write_text(outdir / "report.md", "\n".join(head + sections) + "\n")
+    return checks, seconds
