@@ -68,7 +68,10 @@ def _psi_rule(n: int, m: int):
     psi = _gauss_points(n, m).ravel()
     w = np.tile(0.5 * dpsi * g, n)
     half = 0.5 * psi
-    return (np.cos(psi), np.sin(psi), 2.0 * np.sin(half) ** 2, 2.0 * np.cos(half) ** 2, w), nodes
+    rule = (np.cos(psi), np.sin(psi), 2.0 * np.sin(half) ** 2, 2.0 * np.cos(half) ** 2, w)
+    for arr in (*rule, nodes):  # shared by every caller through the cache
+        arr.setflags(write=False)
+    return rule, nodes
 
 
 def _theta_of_psi(psi: np.ndarray, kappa_g: float) -> np.ndarray:

@@ -40,7 +40,7 @@ MOTIONS = {
 
 
 def _term_sizes(annulus, motion):
-    """Size of the terms that make up each component: (2.5)-(2.7) with kappa -> 1 in the numerators.
+    """Size of the terms that make up each component, (2.5)-(2.7) with kappa -> 1 in the numerators.
 
     Rounding errors are relative to these, not to the result, which can be a small
     difference of them (f_chi as kappa -> 0, the W_b torque as kappa -> 1).
@@ -48,7 +48,8 @@ def _term_sizes(annulus, motion):
     delta, c = annulus.delta, 4 * math.pi * FLUID.mu * annulus.a**3 * annulus.length
     zeta = math.sqrt(annulus.one_minus_kappa * (1 + annulus.kappa))
     w = abs(motion.w_a) + abs(motion.w_b)
-    force = 3 * c * (abs(motion.eps_dot) / (delta**3 * zeta**3) + w / (delta**2 * zeta))
+    # the rotation's f_eps vanishes by symmetry, from sums of sin(theta) h^-2 of size 1/(delta zeta)^2
+    force = 3 * c * (abs(motion.eps_dot) / (delta**3 * zeta**3) + w / (delta * zeta) ** 2)
     # the squeeze pressure's torque vanishes by symmetry, from terms of size 6 mu a^3 L |eps'| oint |sin| h^-2
     torque = 3 * c * w / (delta * zeta) + 2 * c * abs(motion.eps_dot) / (delta * zeta) ** 2
     return np.array([force, force, torque])
