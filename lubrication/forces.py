@@ -10,7 +10,7 @@ from .reynolds import reynolds_forces
 
 __all__ = ["MODELS", "Resistance", "fluid_forces", "resistance"]
 
-MODELS = ("closed-form", "reynolds")
+MODELS = ("closed-form", "reynolds", "stokes")
 
 
 def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "closed-form",
@@ -19,9 +19,11 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
 
     Parameters
     ----------
-    model : {"closed-form", "reynolds"}
-        Lubrication closed forms (2.5)-(2.7), or the numerical Reynolds solver
-        (``options`` go to :func:`lubrication.reynolds.reynolds_forces`).
+    model : {"closed-form", "reynolds", "stokes"}
+        Lubrication closed forms (2.5)-(2.7), the numerical Reynolds solver
+        (``options`` go to :func:`lubrication.reynolds.reynolds_forces`), or the
+        finite-element Stokes solve at any gap width (``options`` set its mesh,
+        see :func:`lubrication.stokes.stokes_forces`; needs the ``fem`` extra).
     """
     if model == "closed-form":
         if options:
@@ -30,6 +32,10 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
         return closed_form_forces(annulus, motion, fluid)
     if model == "reynolds":
         return reynolds_forces(annulus, motion, fluid, **options)
+    if model == "stokes":
+        from .stokes import stokes_forces  # scikit-fem is an optional extra
+
+        return stokes_forces(annulus, motion, fluid, **options)
     msg = f"model must be one of {', '.join(MODELS)}, got {model!r}"
     raise ValueError(msg)
 
