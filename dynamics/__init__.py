@@ -1,1 +1,36 @@
-"""The snail cylinder's equations of motion, scenes, trajectories and the ``snail`` command."""
+"""The snail cylinder's equations of motion, scenes, trajectories and the ``snail`` command.
+
+Load a scene and simulate it::
+
+    from dynamics import load_scene, run_scene
+    trajectory = run_scene(load_scene())          # the embedded default scene
+    trajectory.columns["kappa"], trajectory.status
+"""
+
+from .apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
+from .forcemodels import FORCE_MODELS, ForceModel, force_model
+from .reduced import ReducedParams
+from .run import run_scene
+from .scene import Initial, Scene, SceneError, load_scene, parse_scene
+from .simulate import Trajectory, simulate_full, simulate_reduced
+
+__all__ = [
+    "ALUMINIUM",
+    "FORCE_MODELS",
+    "PRESETS",
+    "STEEL",
+    "Apparatus",
+    "ForceModel",
+    "Initial",
+    "ReducedParams",
+    "Scene",
+    "SceneError",
+    "Trajectory",
+    "force_model",
+    "load_scene",
+    "parse_scene",
+    "preset",
+    "run_scene",
+    "simulate_full",
+    "simulate_reduced",
+]

@@ -66,8 +66,9 @@ def _add_forces(subparsers) -> None:
         "forces", help="fluid force and torque on the inner cylinder",
         description="Fluid force f_eps, f_chi (N) and torque T_a (N m) on the inner cylinder, "
                     "whole length, for one instant. SI units throughout.")
-    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "all"],
-                   help="force model (default closed-form); all: every model and their differences")
+    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "stokes", "all"],
+                   help="force model (default closed-form); all: every model and their differences "
+                        "(stokes needs the fem extra)")
     p.add_argument("--a", type=_number, required=True, help="inner radius (m)")
     p.add_argument("--b", type=_number, required=True, help="outer radius (m)")
     p.add_argument("--kappa", type=_number, required=True, help="eccentricity eps/(b - a), in [0, 1)")
@@ -86,16 +87,25 @@ def _add_forces(subparsers) -> None:
                    help="Reynolds: grid uniform in the Sommerfeld angle or in theta")
     p.add_argument("--profile", default="thin", choices=["thin", "eccentric"],
                    help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
+    p.add_argument("--n-around", type=int, help="Stokes: cells around the annulus (default by delta/a)")
+    p.add_argument("--n-across", type=int, help="Stokes: cells across the gap (default by delta/a)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_forces)
 
 
-def _timed(fn):
-    """Result of ``fn()`` and its wall time, after one call that loads the compiled kernels."""
-    fn()
+def _timed(fn, warm_up: bool):
+    """Result of ``fn()`` and its wall time; ``warm_up`` first loads the compiled kernels."""
+    if warm_up:
+        fn()
     start = time.perf_counter()
     result = fn()
     return result, time.perf_counter() - start
+
+
+def _has_fem() -> bool:
+    from importlib.util import find_spec
+
+    return find_spec("skfem") is not None and find_spec("meshio") is not None
 
 
 def _relative_differences(f, ref) -> dict[str, float]:
@@ -116,28 +126,32 @@ def _run_forces(args) -> int:
         motion = Motion(eps_dot=args.eps_dot, chi_dot=args.chi_dot,
                         omega_a=args.omega_a, omega_b=args.omega_b)
         fluid = Fluid(nu=args.nu, rho=args.rho)
-        options = {"n": args.n, "grid": args.grid, "profile": args.profile}
-        models = ["closed-form", "reynolds"] if args.model == "all" else [args.model]
+        options = {"closed-form": {},
+                   "reynolds": {"n": args.n, "grid": args.grid, "profile": args.profile},
+                   "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
+                              if v is not None}}
+        models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (
+            ["stokes"] if _has_fem() else [])
         results = []
         for model in models:
-            opts = options if model == "reynolds" else {}
-            f, seconds = _timed(lambda m=model, o=opts: fluid_forces(annulus, motion, fluid, m, **o))
-            row = {"model": model, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds}
-            if model == "reynolds":
-                row.update(options)
+            # Stokes caches its factorisation: a warm-up call would hide its real cost
+            f, seconds = _timed(lambda m=model: fluid_forces(annulus, motion, fluid, m, **options[m]),
+                                warm_up=model != "stokes")
+            row = {"model": model, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds,
+                   **options[model]}
             results.append((f, row))
-    except ValueError as err:
+    except (ValueError, ImportError) as err:
         raise UsageError(str(err)) from err
     if len(results) == 1:
         out = results[0][1]
     else:
-        # the numerical solve is the reference the closed forms are checked against
+        # the most complete model computed is the reference: Stokes at any gap, else Reynolds
         ref = results[-1][0]
         for f, row in results:
             row["relative_difference"] = _relative_differences(f, ref)
         out = dict(results[-1][1])
-        out.update(model="all", reference="reynolds", wall_time_s=sum(r["wall_time_s"] for _, r in results),
-                   models=[row for _, row in results])
+        out.update(model="all", reference=results[-1][1]["model"],
+                   wall_time_s=sum(r["wall_time_s"] for _, r in results), models=[row for _, row in results])
     if args.json:
         print(json.dumps(out, indent=2))
     else:
@@ -152,16 +166,67 @@ def _print_forces_table(annulus, rows) -> None:
     for row in rows:
         print(f"{row['model']:<12} {row['f_eps']:>16.9e} {row['f_chi']:>16.9e} {row['T_a']:>16.9e} "
               f"{row['wall_time_s']:>10.2e}")
-    for row in rows:
+    for row in rows[:-1]:
         diff = row.get("relative_difference")
-        if diff and row["model"] != "reynolds":
-            print(f"{row['model']} vs reynolds: " + ", ".join(f"{k} {v:.2e}" for k, v in diff.items()))
+        if diff:
+            print(f"{row['model']} vs {rows[-1]['model']}: " + ", ".join(f"{k} {v:.2e}" for k, v in diff.items()))
+
+
+def _add_run(subparsers) -> None:
+    p = subparsers.add_parser(
+        "run", help="run a scene and write its trajectory",
+        description="Integrate a scene (the embedded default when none is given) and write "
+                    "trajectory.csv, summary.json, trajectory.png and scene.resolved.toml into DIR.")
+    p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded steel scene)")
+    p.add_argument("-o", "--output", default="snail-output", help="output folder (default snail-output)")
+    p.add_argument("--t-end", help="run length: seconds, or a string with units such as '2 min'")
+    p.add_argument("--model", choices=["full", "reduced"], help="equations of motion, overriding the scene")
+    p.add_argument("--forces", choices=["closed-form", "reynolds"], help="force model, overriding the scene")
+    p.add_argument("--method", default="LSODA", choices=["LSODA", "BDF", "Radau"],
+                   help="scipy integrator (default LSODA)")
+    p.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                   help="override one scene value (repeatable), e.g. --set initial.kappa=0.3")
+    p.add_argument("--json", action="store_true", help="print summary.json to stdout")
+    p.set_defaults(run=_run_scene)
+
+
+def _run_scene(args) -> int:
+    from .output import write_outputs
+    from .run import run_scene
+    from .scene import SceneError, load_scene, resolved_toml
+
+    overrides = list(args.set)
+    if args.t_end is not None:
+        try:  # a bare number is in seconds, anything else a string with units
+            overrides.append(f"run.t_end={float(args.t_end)!r}")
+        except ValueError:
+            overrides.append(f"run.t_end={json.dumps(args.t_end)}")
+    if args.model is not None:
+        overrides.append(f'model.equations="{args.model}"')
+    if args.forces is not None:
+        overrides.append(f'model.forces="{args.forces}"')
+    try:
+        scene = load_scene(args.scene, overrides)
+        trajectory = run_scene(scene, method=args.method, progress="snail run")
+    except SceneError as err:
+        raise UsageError(str(err)) from err
+    info = write_outputs(args.output, trajectory, resolved_scene=resolved_toml(scene),
+                         scene=scene.source)
+    if args.json:
+        print(json.dumps(info, indent=2))
+    else:
+        print(f"{info['status']}: {info['reason']}")
+        print(f"regime {info['regime']}, mean speed {info['mean_speed']:.4g} "
+              f"({'b/tau' if info['dimensionless'] else 'm/s'}), {info['steps']} steps in "
+              f"{info['wall_time_s']:.2f} s; outputs in {args.output}/")
+    return 0 if trajectory.status == "completed" else 1
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="snail", description="The snail cylinder: fluid forces, trajectories, validation.")
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_forces(subparsers)
+    _add_run(subparsers)
     for ep in entry_points(group="snail.commands"):
         ep.load()(subparsers)
     return parser

@@ -32,10 +32,14 @@ def test_all_models_with_relative_differences(capsys):
                        "--chi-dot", "-2.5E-1", "--omega-b", "-.5", "--json")
     assert code == 0
     data = json.loads(out)
-    assert [m["model"] for m in data["models"]] == ["closed-form", "reynolds"]
-    closed = data["models"][0]
+    names = [m["model"] for m in data["models"]]
+    assert names[:2] == ["closed-form", "reynolds"] and data["reference"] == names[-1]
+    closed, numeric = data["models"][:2]
     assert closed["f_eps"] > 0  # the gap opens as eps' < 0: the fluid pulls the cylinder back
-    assert max(closed["relative_difference"].values()) < 1e-12
+    # the Reynolds solver reproduces the closed forms; Stokes, if installed, differs at finite delta/a
+    for name in ("f_eps", "f_chi", "T_a"):
+        assert abs(closed[name] - numeric[name]) <= 1e-12 * max(abs(closed["f_eps"]), abs(closed["f_chi"]),
+                                                               abs(closed["T_a"]))
 
 
 def test_negative_numbers_in_scientific_notation_are_values(capsys):

@@ -226,7 +226,9 @@ def test_finite_everywhere_in_the_valid_domain(kappa, delta_over_a, velocities, 
 
 
 @settings(max_examples=200, deadline=None)
-@given(kappa=st.floats(0.0, 1.0 - 1e-9), velocities=st.tuples(*[st.floats(-10.0, 10.0)] * 4))
+# velocities below 1e-100 would take the products into subnormal numbers, where relative precision ends
+@given(kappa=st.floats(0.0, 1.0 - 1e-9),
+       velocities=st.tuples(*[st.floats(-10.0, 10.0).filter(lambda v: v == 0 or abs(v) > 1e-100)] * 4))
 def test_agrees_with_closed_forms_over_the_domain(kappa, velocities):
     annulus = Annulus.from_kappa(A, B, kappa, L)
     motion = Motion(velocities[0] * 1e-4, *velocities[1:])

@@ -1,0 +1,106 @@
+"""The force-model interface the equations of motion call, with one adapter per lubrication model.
+
+A :class:`ForceModel` is plain data (a model code and the arrays its kernel
+needs), so that the right-hand side of the equations of motion can be jitted
+once and call :func:`evaluate` for any model without Python in the loop.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from lubrication import _kernels
+from lubrication.closed_form import lubrication_forces
+from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
+from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
+
+__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "reynolds", "force_model", "evaluate"]
+
+CLOSED_FORM, REYNOLDS = 0, 1
+FORCE_MODELS = ("closed-form", "reynolds")
+
+_NO_ARRAY = np.empty(0)
+
+
+@dataclass(frozen=True)
+class ForceModel:
+    """A fluid-force model as the jitted equations of motion see it.
+
+    Attributes
+    ----------
+    name : str
+        "closed-form" or "reynolds".
+    code : int
+        Model code used by :func:`evaluate`.
+    profile : int
+        Gap profile of the Reynolds kernel (thin or eccentric).
+    sommerfeld : bool
+        Reynolds grid uniform in the Sommerfeld angle (True) or in theta.
+    rule : tuple of ndarray
+        cos, sin, 1 - cos, 1 + cos of psi and the weights at the Gauss points.
+    points_per_cell : int
+        Gauss points per cell of the Reynolds grid.
+    options : dict
+        The options the model was built with, for the record.
+    """
+
+    name: str
+    code: int
+    profile: int = _kernels.THIN
+    sommerfeld: bool = True
+    rule: tuple = (_NO_ARRAY,) * 5
+    points_per_cell: int = 1
+    options: dict = field(default_factory=dict)
+
+    def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
+        """The same evaluation from Python (for checks and single instants)."""
+        f = evaluate(self.code, self.profile, self.sommerfeld, self.rule, self.points_per_cell,
+                     annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
+                     annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
+        return FluidForces(*f, model=self.name)
+
+
+def closed_form() -> ForceModel:
+    """Lubrication closed forms (2.5)-(2.7)."""
+    return ForceModel("closed-form", CLOSED_FORM)
+
+
+def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1) -> ForceModel:
+    """The numerical Reynolds solver; on the Sommerfeld grid its thin-gap forces are exact to
+    rounding from N = 8, so a trajectory with it tracks the closed-form one to the integrator's
+    tolerance."""
+    _check_discretisation(n, grid, points_per_cell)
+    if profile not in PROFILES:
+        msg = f"profile must be one of {', '.join(PROFILES)}, got {profile!r}"
+        raise ValueError(msg)
+    rule, _ = _psi_rule(n, points_per_cell)
+    code = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
+    return ForceModel("reynolds", REYNOLDS, code, grid == "sommerfeld", rule, points_per_cell,
+                      {"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell})
+
+
+def force_model(name: str, **options) -> ForceModel:
+    """The adapter for ``name`` ("closed-form" or "reynolds")."""
+    if name == "closed-form":
+        return closed_form()
+    if name == "reynolds":
+        return reynolds(**options)
+    msg = f"forces must be one of {', '.join(FORCE_MODELS)}, got {name!r}"
+    raise ValueError(msg)
+
+
+@njit(cache=True, nogil=True)
+def evaluate(code, profile, sommerfeld, rule, points_per_cell, a, b, mu, length, kappa, omk,
+             eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) for the model ``code``; see :class:`ForceModel`."""
+    if code == CLOSED_FORM:
+        return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
+    cpsi, spsi, vpsi, ppsi, wpsi = rule
+    none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
+    return _kernels.film_forces(profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b,
+                                kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell,
+                                none, none, 1.0, 0.0, none)

@@ -1,0 +1,42 @@
+"""A scene in, a trajectory out: the modelling choices a scene asks for, and nothing else."""
+
+from __future__ import annotations
+
+from .forcemodels import force_model
+from .scene import Scene, SceneError
+from .simulate import Trajectory, simulate_full, simulate_reduced
+
+__all__ = ["run_scene"]
+
+
+def _refuse(key: str, why: str) -> SceneError:
+    return SceneError(f"{key}: {why}")
+
+
+def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = None) -> Trajectory:
+    """Integrate ``scene`` with the equations and forces it names.
+
+    Raises
+    ------
+    SceneError
+        For a choice this version cannot model (contact, cavitation, Stokes
+        forces and the automatic choices come with their own models).
+    """
+    model = scene.model
+    if scene.contact is not None:
+        raise _refuse("contact", "contact is not modelled yet; remove the [contact] section")
+    if scene.cavitation is not None:
+        raise _refuse("cavitation", "cavitation is not modelled yet; remove the [cavitation] section")
+    if model.equations == "auto" or model.forces == "auto":
+        raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
+                               "equations (full, reduced) and forces (closed-form, reynolds)")
+    if model.forces == "stokes":
+        raise _refuse("model.forces", "Stokes forces in trajectories need the resistance tables; "
+                                      "use closed-form or reynolds")
+    if model.equations == "reduced":
+        return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
+                                apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
+                                progress=progress)
+    options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
+    return simulate_full(scene.apparatus, force_model(model.forces, **options), scene.initial,
+                         scene.run.t_end, rtol=scene.run.rtol, method=method, progress=progress)

@@ -1,0 +1,173 @@
+"""Closed-form special solutions of the reduced model (section 3).
+
+All in the reduced model's units: time in tau, rotation rates in 1/tau.
+They are the checks the integrators are held to: steady rolling (3.2),
+sedimentation (3.3), the pushed pendulum at contact (3.5), the slow approach to
+contact (3.9)-(3.10) and the runaway (3.11).
+
+The angle phi is measured from the upward vertical. The pushed pendulum rocks
+about the rest point with sin(phi) = -s and cos(phi) = -sqrt(1 - s^2) (the
+inner cylinder near the bottom, dragged up the rear side), that is
+phi* = pi + arcsin(s) modulo 2 pi; the text's "phi = -sin^-1 s" names this
+point by its sine only (the principal value would be the unstable top).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from lubrication.geometry import check_finite, check_range
+
+from .reduced import stretched_to_kappa
+
+__all__ = [
+    "SlowApproach",
+    "SteadyRolling",
+    "contact_equilibrium",
+    "decay_exponent",
+    "pushed_pendulum_energy",
+    "pushed_pendulum_rhs",
+    "rocking_frequency",
+    "runaway_spin_rate",
+    "sedimentation",
+    "slow_approach",
+    "steady_rolling",
+]
+
+
+class SteadyRolling(NamedTuple):
+    """The steadily rolling equilibrium (3.2)."""
+
+    kappa: float
+    phi: float
+    omega_a: float
+    omega_b: float
+
+
+def steady_rolling(s: float) -> SteadyRolling:
+    """Steady rolling (3.2): kappa = s, phi = -pi/2, with the rates that balance (3.1).
+
+    Omega_b = sqrt(1 - s^2)(1 + 2 s^2)/s and Omega_a = (1 - s^2)/(1 + 2 s^2) Omega_b.
+    Linearly unstable for every s (section 3.1).
+
+    Parameters
+    ----------
+    s : float
+        Slope group, in (0, 1).
+    """
+    s = check_range("s", s, 0.0, 1.0, low_open=True)
+    omega_b = math.sqrt(1.0 - s * s) * (1.0 + 2.0 * s * s) / s
+    return SteadyRolling(kappa=s, phi=-0.5 * math.pi,
+                         omega_a=(1.0 - s * s) / (1.0 + 2.0 * s * s) * omega_b, omega_b=omega_b)
+
+
+def sedimentation(t, kappa0: float):
+    """Sedimentation from rest on a level plane (3.3): s = 0, phi = pi, no rotation.
+
+    kappa = T / sqrt(1 + T^2) with T = t + kappa0/sqrt(1 - kappa0^2); T is the
+    stretched radius r of :mod:`dynamics.reduced`.
+
+    Parameters
+    ----------
+    t : float or array_like
+        Time in units of tau, >= 0.
+    kappa0 : float
+        Initial eccentricity in [0, 1).
+
+    Returns
+    -------
+    kappa, one_minus_kappa : float or ndarray
+        1 - kappa without cancellation.
+    """
+    kappa0 = check_range("kappa0", kappa0, 0.0, 1.0)
+    r0 = kappa0 / math.sqrt((1.0 - kappa0) * (1.0 + kappa0))  # no cancellation near 1
+    return stretched_to_kappa(np.asarray(t, dtype=float) + r0)
+
+
+def contact_equilibrium(s: float) -> float:
+    """Stable rest point phi* = pi + arcsin(s) of the pushed pendulum (3.5), |s| < 1."""
+    s = check_range("s", s, -1.0, 1.0, low_open=True)
+    return math.pi + math.asin(s)
+
+
+def pushed_pendulum_rhs(t: float, y, s: float, upsilon: float, mu_ratio: float) -> np.ndarray:
+    """The pushed pendulum at contact (3.5), Upsilon (mu_ + 1/2) phi'' = s + sin(phi).
+
+    Valid at contact (kappa = 1, Omega_a = Omega_b = phi'), where (2.11d) is
+    all that is left. ``y`` is (phi, phi'); returns its derivative.
+    """
+    return np.array([y[1], (s + math.sin(y[0])) / (upsilon * (mu_ratio + 0.5))])
+
+
+def pushed_pendulum_energy(phi, phi_dot, s: float, upsilon: float, mu_ratio: float):
+    """First integral of (3.5): (1/2) Upsilon (mu_ + 1/2) phi'^2 + cos(phi) - s phi."""
+    return 0.5 * upsilon * (mu_ratio + 0.5) * np.square(phi_dot) + np.cos(phi) - s * phi
+
+
+def rocking_frequency(s: float, upsilon: float, mu_ratio: float) -> float:
+    """Angular frequency omega of small rocking near contact, omega^2 of (3.10)."""
+    s = check_range("s", s, -1.0, 1.0, low_open=True)
+    return math.sqrt(math.sqrt(1.0 - s * s) / (upsilon * (mu_ratio + 0.5)))
+
+
+def decay_exponent(mu_ratio: float) -> float:
+    """Exponent q = 3 (1 + 4 mu_^2) / (2 (1 + 2 mu_)^2) of the rocking amplitude's decay (3.10).
+
+    Its minimum is 3/4 at mu_ = 1/2; for mu_ >= 1 (every real device has
+    mu_ > 1) it rises from 5/6 at mu_ = 1 towards 3/2, the range quoted in
+    section 3.2.
+    """
+    mu_ratio = check_finite("mu_ratio", mu_ratio)
+    return 3.0 * (1.0 + 4.0 * mu_ratio**2) / (2.0 * (1.0 + 2.0 * mu_ratio) ** 2)
+
+
+class SlowApproach(NamedTuple):
+    """The multiple-scale solution (3.9) near contact, and the distance it rolls."""
+
+    zeta: np.ndarray
+    amplitude: np.ndarray
+    x_b: np.ndarray
+
+
+def slow_approach(t, zeta0: float, s: float, mu_ratio: float) -> SlowApproach:
+    """Slow approach to contact (3.9): the gap, the rocking envelope and the distance rolled.
+
+    With c = sqrt(1 - s^2) and T = 1 + t zeta0 c:
+
+    * zeta = sqrt(1 - kappa^2) = zeta0 / T (3.9);
+    * the amplitude of phi - phi* decays as T^-q = (zeta/zeta0)^q, q of (3.10);
+    * X_b - X_b(0) = (3 s / c) ln T, in units of b.
+
+    The last is not the text's X_b ~ t^(1-q), which integrates the envelope of
+    an oscillation of zero mean. Averaged over the rocking, phi' has zero
+    mean and Omega_a' is O(zeta^2); near contact (2.11b) gives
+    (Omega_a + Omega_b)/2 - phi' = -(3/2) zeta sin(phi) = (3/2) s zeta and
+    (2.11c) gives Omega_b - Omega_a = -3 zeta sin(phi) = 3 s zeta, so the mean
+    rolling rate is Omega_b = 3 s zeta: the sheared film keeps the outer
+    cylinder turning, and X_b grows logarithmically for every mu_ (also for
+    q > 1, where the text has the device stop after a finite distance).
+
+    Parameters
+    ----------
+    t : float or array_like
+        Time since zeta was zeta0 (units of tau).
+    zeta0 : float
+        sqrt(1 - kappa^2) at t = 0, small.
+    s : float
+        Slope group, |s| < 1.
+    mu_ratio : float
+        The paper's mu.
+    """
+    s = check_range("s", s, -1.0, 1.0, low_open=True)
+    c = math.sqrt(1.0 - s * s)
+    stretch = 1.0 + np.asarray(t, dtype=float) * zeta0 * c
+    return SlowApproach(zeta=zeta0 / stretch, amplitude=stretch ** -decay_exponent(mu_ratio),
+                        x_b=3.0 * s / c * np.log(stretch))
+
+
+def runaway_spin_rate(s: float, upsilon: float, mu_ratio: float) -> float:
+    """Slope of the runaway (3.11): Omega_a ~ Omega_b ~ phi' ~ s t / ((mu_ + 1/2) Upsilon)."""
+    return s / ((mu_ratio + 0.5) * upsilon)

@@ -1,0 +1,95 @@
+"""`snail run` end to end: outputs, exit codes, bad scenes, and runs that stop early."""
+
+import json
+
+import numpy as np
+import pytest
+
+from dynamics.cli import main
+from dynamics.integrate import integrate
+
+SHORT = ["--t-end", "2 s"]
+
+
+def test_default_scene_writes_the_contract_outputs(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", "-o", str(out), *SHORT, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    for key in ("model", "forces", "t_end", "mean_speed", "regime", "wall_time_s", "steps", "tau",
+                "s", "upsilon", "mu", "delta_over_a"):
+        assert key in summary
+    assert summary["status"] == "completed" and summary["t_end"] == pytest.approx(2.0)
+    header = (out / "trajectory.csv").read_text().splitlines()[0].split(",")
+    assert {"t", "x_b", "eps", "chi", "kappa", "phi", "omega_a", "omega_b", "t_tau"} <= set(header)
+    assert (out / "trajectory.png").stat().st_size > 10_000
+    assert json.loads((out / "summary.json").read_text()) == summary
+    assert "[apparatus]" in (out / "scene.resolved.toml").read_text()
+
+
+def test_reduced_model_with_reynolds_forces_is_refused_and_nothing_written(tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["run", "-o", str(out), "--model", "reduced", "--forces", "reynolds"])
+    assert code == 2
+    assert "model.forces" in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    ("override", "words"),
+    [
+        ("initial.kappa=1.0", "initial.kappa"),
+        ("fluid.nu=-1e-4", "fluid.nu"),
+        ("incline.alpha='2.4 kg'", "incline.alpha"),
+        ("apparatus.b=0.005", "apparatus.b"),
+        ("bogus.key=1", "bogus"),
+    ],
+)
+def test_bad_scene_values_exit_2_naming_the_key(tmp_path, capsys, override, words):
+    out = tmp_path / "run"
+    assert main(["run", "-o", str(out), "--set", override]) == 2
+    err = capsys.readouterr().err
+    assert words in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_reynolds_forces_run_from_the_command_line(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", "-o", str(out), "--forces", "reynolds", "--t-end", "0.5", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["forces"] == "reynolds"
+
+
+def test_a_run_stopped_by_its_validity_limit_exits_1_and_keeps_its_data(tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["run", "-o", str(out), "--set", "apparatus.preset='aluminium'",
+                 "--set", "incline.alpha='12 deg'", "--t-end", "30 s", "--json"])
+    summary = json.loads(capsys.readouterr().out)
+    assert code == 1
+    assert summary["status"] == "stopped" and "Reynolds number" in summary["reason"]
+    assert summary["regime"] == "runaway"
+    rows = (out / "trajectory.csv").read_text().splitlines()
+    assert len(rows) > 100
+
+
+def test_an_interrupted_integration_keeps_every_step_it_took():
+    calls = {"n": 0}
+
+    def fun(t, y):
+        calls["n"] += 1
+        if calls["n"] > 200:
+            raise KeyboardInterrupt
+        return -y
+
+    run = integrate(fun, np.array([1.0]), 100.0, method="RK45", rtol=1e-10)
+    assert run.status == "interrupted" and "interrupted at t" in run.reason
+    assert run.t.size > 5 and np.allclose(run.y[0], np.exp(-run.t), rtol=1e-8)
+
+
+def test_a_failing_right_hand_side_is_reported_not_raised():
+    def fun(t, y):
+        if t > 1.0:
+            raise ZeroDivisionError("float division by zero")
+        return np.ones(1)
+
+    run = integrate(fun, np.zeros(1), 5.0, method="RK45")
+    assert run.status == "failed" and "ZeroDivisionError" in run.reason
+    assert run.t[-1] <= 1.0 + 1e-12 and run.t.size > 1
