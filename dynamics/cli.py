@@ -15,6 +15,7 @@ import re
 import sys
 import time
 from importlib.metadata import entry_points
+from pathlib import Path
 
 __all__ = ["UsageError", "main"]
 
@@ -89,6 +90,9 @@ def _add_forces(subparsers) -> None:
                    help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
     p.add_argument("--n-around", type=int, help="Stokes: cells around the annulus (default by delta/a)")
     p.add_argument("--n-across", type=int, help="Stokes: cells across the gap (default by delta/a)")
+    p.add_argument("--flow", metavar="DIR",
+                   help="Stokes: write the flow field to DIR/flow.vtu (velocity, pressure, vorticity) "
+                        "and a picture DIR/flow.png")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=_run_forces)
 
@@ -140,8 +144,12 @@ def _run_forces(args) -> int:
             row = {"model": model, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds,
                    **options[model]}
             results.append((f, row))
+        if args.flow is not None and "stokes" not in models:
+            raise ValueError("--flow needs the Stokes model (--model stokes or all)")
     except (ValueError, ImportError) as err:
         raise UsageError(str(err)) from err
+    if args.flow is not None:
+        _write_flow(args.flow, annulus, motion, fluid, options["stokes"])
     if len(results) == 1:
         out = results[0][1]
     else:
@@ -157,6 +165,22 @@ def _run_forces(args) -> int:
     else:
         _print_forces_table(annulus, [row for _, row in results])
     return 0
+
+
+def _write_flow(outdir, annulus, motion, fluid, mesh_options) -> None:
+    import matplotlib.pyplot as plt
+
+    from lubrication.stokes import plot_flow, stokes_flow, write_vtu
+
+    from .files import save_figure
+
+    flow = stokes_flow(annulus, motion, fluid, **mesh_options)
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    write_vtu(outdir / "flow.vtu", flow)
+    fig = plot_flow(flow)
+    save_figure(outdir / "flow.png", fig, dpi=120)
+    plt.close(fig)
 
 
 def _print_forces_table(annulus, rows) -> None:

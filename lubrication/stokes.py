@@ -55,7 +55,7 @@ from .closed_form import lubrication_forces
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_range
 
 __all__ = ["StokesResistance", "StokesFlow", "default_mesh", "stokes_resistance",
-           "stokes_forces", "stokes_flow", "write_vtu"]
+           "stokes_forces", "stokes_flow", "write_vtu", "plot_flow"]
 
 logger = logging.getLogger(__name__)
 
@@ -543,3 +543,45 @@ def write_vtu(path: str | Path, flow: StokesFlow) -> Path:
     meshio.write(tmp, out, file_format="vtu")
     tmp.replace(path)
     return path
+
+
+def plot_flow(flow: StokesFlow):
+    """A figure of the flow: pressure in colour, velocity arrows, and the two walls.
+
+    The quadratic cells are drawn through their corner nodes split into two
+    triangles each, which is enough for a picture; the VTU file keeps the full
+    field.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.tri import Triangulation
+
+    mesh = flow.mesh
+    xy = 1e3 * mesh.doflocs  # mm
+    corners = mesh.t  # the first nodes are the cell corners
+    triangles = np.vstack([corners[[0, 1, 2]].T, corners[[0, 2, 3]].T])
+    tri = Triangulation(xy[0], xy[1], triangles)
+    pressure = flow.nodal_pressure()
+    velocity = flow.nodal_velocity()
+    fig, ax = plt.subplots(figsize=(6.4, 5.6))
+    levels = np.linspace(pressure.min(), pressure.max(), 41)
+    shade = ax.tricontourf(tri, pressure, levels=levels, cmap="RdBu_r")
+    fig.colorbar(shade, ax=ax, label="pressure (Pa, up to a constant)")
+    pick = np.arange(0, xy.shape[1], max(1, xy.shape[1] // 1500))
+    ax.quiver(xy[0, pick], xy[1, pick], velocity[0, pick], velocity[1, pick], width=0.002)
+    boundary = xy[:, mesh.boundary_nodes()]
+    ax.plot(boundary[0], boundary[1], "k.", ms=0.8)
+    f = flow.forces
+    ax.set_title(f"Stokes flow: f_eps = {f.f_eps:.3e} N, f_chi = {f.f_chi:.3e} N, T_a = {f.T_a:.3e} N m",
+                 fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm), towards the inner centre")
+    ax.set_ylabel("y (mm)")
+    fig.tight_layout()
+    return fig
