@@ -79,10 +79,16 @@ def eccentric_gap(a, b, eps, omk, s, v, eps_dot):
     return h, q
 
 
+# Columns of the per-cell integrals (dtheta over one cell): h^-1, h^-2, h^-3, Q h^-3, Q h^-2,
+# and the sin(theta)- and omega-weighted h^-2, h^-3, Q h^-3 that the forces need.
+H1, H2, H3, QH3, QH2, SH2, SH3, SQH3, OH2, OH3, OQH3 = range(11)
+N_INTEGRALS = 11
+
+
 @njit(cache=True, nogil=True)
-def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
-         cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, phi_out):
-    """Solve the full-film Reynolds equation; return oint phi' sin, oint phi' omega, torque sum.
+def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
+                   cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, out):
+    """Fill ``out[j]`` with the integrals over cell j listed by the column constants above.
 
     Parameters
     ----------
@@ -92,11 +98,9 @@ def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
         Radii (m).
     kappa, omk : float
         Eccentricity ratio and 1 - kappa; for TABULATED, the profile's own
-        (h_max - h_min)/(h_max + h_min), which only chooses the f_chi weight.
+        (h_max - h_min)/(h_max + h_min), which only chooses the f_chi weight omega.
     eps_dot : float
         Rate of change of the centre distance (m/s).
-    u_a, u_b : float
-        Surface speeds of the inner and outer wall in the frame of the line of centres (m/s).
     kappa_g, omk_g : float
         Grid parameter and 1 - kappa_g.
     cpsi, spsi, vpsi, ppsi, wpsi : ndarray, shape (N*m,)
@@ -105,33 +109,19 @@ def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
         Points per cell.
     h_tab, q_tab : ndarray, shape (N*m,) or (0,)
         Gap and squeeze flux at the points, for TABULATED.
-    phi_out : ndarray, shape (N,) or (0,)
-        When of length N, receives phi = p/(12 mu a) at the nodes psi_j, up to a constant.
-
-    Returns
-    -------
-    i_sin, i_chi, i_torque : float
-        oint phi' sin(theta), oint phi' omega, and
-        oint [(u_b - u_a)/h - 6 phi' h], all dtheta.
+    out : ndarray, shape (N, N_INTEGRALS)
     """
     n_cells = spsi.size // m
     zeta_g = math.sqrt(omk_g * (1.0 + kappa_g))
     delta = b - a
     inv_delta = 1.0 / delta
     eps = kappa * delta
-    want_phi = phi_out.size == n_cells
-    # per-cell integrals, kept only for the nodal pressure
-    a_cell = np.empty(n_cells if want_phi else 0)
-    g_cell = np.empty(n_cells if want_phi else 0)
-    b_cell = np.empty(n_cells if want_phi else 0)
     vers_weight = kappa >= 0.5
-    # whole-period sums: int h^-1, h^-2, h^-3, Q h^-3, Q h^-2, and sin-, omega-weighted ones
-    s1 = s2 = s3 = sq3 = sq2 = 0.0
-    sin2 = sin3 = sinq3 = 0.0
-    om2 = om3 = omq3 = 0.0
     k = 0
     for j in range(n_cells):
-        c_a = c_g = c_b = 0.0
+        s1 = s2 = s3 = sq3 = sq2 = 0.0
+        sin2 = sin3 = sinq3 = 0.0
+        om2 = om3 = omq3 = 0.0
         for _ in range(m):
             d = omk_g + kappa_g * ppsi[k]
             if kind == THIN:
@@ -153,10 +143,8 @@ def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
                     h = h_tab[k]
                     q = q_tab[k]
                 r1 = 1.0 / h
-            jac = zeta_g * r
             om = v if vers_weight else -(kappa_g + cpsi[k]) * r
-            w = wpsi[k] * jac
-            w1 = w * r1
+            w1 = wpsi[k] * zeta_g * r * r1
             w2 = w1 * r1
             w3 = w2 * r1
             s1 += w1
@@ -170,32 +158,54 @@ def film(kind, a, b, kappa, omk, eps_dot, u_a, u_b, kappa_g, omk_g,
             om2 += om * w2
             om3 += om * w3
             omq3 += om * q * w3
-            c_a += w2
-            c_g += w3
-            c_b += q * w3
             k += 1
-        if want_phi:
-            a_cell[j] = c_a
-            g_cell[j] = c_g
-            b_cell[j] = c_b
+        row = out[j]
+        row[H1], row[H2], row[H3], row[QH3], row[QH2] = s1, s2, s3, sq3, sq2
+        row[SH2], row[SH3], row[SQH3] = sin2, sin3, sinq3
+        row[OH2], row[OH3], row[OQH3] = om2, om3, omq3
+
+
+@njit(cache=True, nogil=True)
+def full_film(integrals, u_a, u_b, phi_out):
+    """The full-film solution from the cell integrals; return oint phi' sin, oint phi' omega, torque sum.
+
+    Parameters
+    ----------
+    integrals : ndarray, shape (N, N_INTEGRALS)
+        From :func:`cell_integrals`.
+    u_a, u_b : float
+        Surface speeds of the inner and outer wall in the frame of the line of centres (m/s).
+    phi_out : ndarray, shape (N,) or (0,)
+        When of length N, receives phi = p/(12 mu a) at the nodes psi_j, up to a constant.
+
+    Returns
+    -------
+    i_sin, i_chi, i_torque : float
+        oint phi' sin(theta), oint phi' omega, and
+        oint [(u_b - u_a)/h - 6 phi' h], all dtheta.
+    """
+    total = np.zeros(N_INTEGRALS)
+    for j in range(integrals.shape[0]):
+        for c in range(N_INTEGRALS):
+            total[c] += integrals[j, c]
     half_u = 0.5 * (u_a + u_b)
     # periodicity of phi: sum over cells of (U/2) A_j + B_j - qhat G_j = 0
-    qhat = (half_u * s2 + sq3) / s3
-    i_sin = half_u * sin2 + sinq3 - qhat * sin3
-    i_chi = half_u * om2 + omq3 - qhat * om3
-    i_torque = (u_b - u_a) * s1 - 6.0 * (half_u * s1 + sq2 - qhat * s2)
-    if want_phi:
+    qhat = (half_u * total[H2] + total[QH3]) / total[H3]
+    i_sin = half_u * total[SH2] + total[SQH3] - qhat * total[SH3]
+    i_chi = half_u * total[OH2] + total[OQH3] - qhat * total[OH3]
+    i_torque = (u_b - u_a) * total[H1] - 6.0 * (half_u * total[H1] + total[QH2] - qhat * total[H2])
+    if phi_out.size == integrals.shape[0]:
         phi = 0.0
-        for j in range(n_cells):
+        for j in range(integrals.shape[0]):
             phi_out[j] = phi
-            phi += half_u * a_cell[j] + b_cell[j] - qhat * g_cell[j]
+            phi += half_u * integrals[j, H2] + integrals[j, QH3] - qhat * integrals[j, H3]
     return i_sin, i_chi, i_torque
 
 
 @njit(cache=True, nogil=True)
 def film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
                 cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, cos_c, sin_c, phi_out):
-    """f_eps, f_chi (N) and T_a (N m) over the length, from :func:`film`.
+    """f_eps, f_chi (N) and T_a (N m) of the full film over the length.
 
     ``w_a``, ``w_b`` are the rotation rates relative to the line of centres; the
     walls move at a w_a and a w_b for the thin (leading-order) and tabulated
@@ -203,8 +213,10 @@ def film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, 
     rotate the force from a grid centred at angle c back to the line of centres.
     """
     u_b = (b if kind == ECCENTRIC else a) * w_b
-    i_sin, i_chi, i_torque = film(kind, a, b, kappa, omk, eps_dot, a * w_a, u_b, kappa_g, omk_g,
-                                  cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, phi_out)
+    integrals = np.empty((spsi.size // m, N_INTEGRALS))
+    cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, m,
+                   h_tab, q_tab, integrals)
+    i_sin, i_chi, i_torque = full_film(integrals, a * w_a, u_b, phi_out)
     scale = 12.0 * mu * a * a * length
     f_x = scale * i_sin
     f_y = scale * i_chi
