@@ -205,7 +205,8 @@ def _add_run(subparsers) -> None:
     p.add_argument("-o", "--output", default="snail-output", help="output folder (default snail-output)")
     p.add_argument("--t-end", help="run length: seconds, or a string with units such as '2 min'")
     p.add_argument("--model", choices=["full", "reduced"], help="equations of motion, overriding the scene")
-    p.add_argument("--forces", choices=["closed-form", "reynolds"], help="force model, overriding the scene")
+    p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes"],
+                   help="force model, overriding the scene (stokes: tabulated, built once per delta/a)")
     p.add_argument("--method", default="LSODA", choices=["LSODA", "BDF", "Radau"],
                    help="scipy integrator (default LSODA)")
     p.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",

@@ -16,13 +16,15 @@ from lubrication import _kernels
 from lubrication.closed_form import lubrication_forces
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
+from lubrication.stokes_tables import RATIO_NAMES, StokesTable, table_forces
 
-__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "reynolds", "force_model", "evaluate"]
+__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "reynolds", "stokes", "force_model", "evaluate"]
 
-CLOSED_FORM, REYNOLDS = 0, 1
-FORCE_MODELS = ("closed-form", "reynolds")
+CLOSED_FORM, REYNOLDS, STOKES_TABLE = 0, 1, 2
+FORCE_MODELS = ("closed-form", "reynolds", "stokes")
 
 _NO_ARRAY = np.empty(0)
+_NO_TABLE = (np.empty(0), np.empty((len(RATIO_NAMES), 0)), np.empty(len(RATIO_NAMES)))
 
 
 @dataclass(frozen=True)
@@ -43,6 +45,8 @@ class ForceModel:
         cos, sin, 1 - cos, 1 + cos of psi and the weights at the Gauss points.
     points_per_cell : int
         Gauss points per cell of the Reynolds grid.
+    table : tuple of ndarray
+        (zeta_nodes, node_ratios, contact) of a Stokes resistance table.
     options : dict
         The options the model was built with, for the record.
     """
@@ -53,11 +57,12 @@ class ForceModel:
     sommerfeld: bool = True
     rule: tuple = (_NO_ARRAY,) * 5
     points_per_cell: int = 1
+    table: tuple = _NO_TABLE
     options: dict = field(default_factory=dict)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
-        f = evaluate(self.code, self.profile, self.sommerfeld, self.rule, self.points_per_cell,
+        f = evaluate(self.code, self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.table,
                      annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
                      annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
@@ -79,25 +84,42 @@ def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", point
     rule, _ = _psi_rule(n, points_per_cell)
     code = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
     return ForceModel("reynolds", REYNOLDS, code, grid == "sommerfeld", rule, points_per_cell,
-                      {"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell})
+                      options={"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell})
+
+
+def stokes(delta_over_a: float, **table_options) -> ForceModel:
+    """Full Stokes forces at the annulus' delta/a, interpolated in a resistance table.
+
+    The table is built once per delta/a with the finite-element solver (a minute or so)
+    and cached; ``table_options`` go to :meth:`lubrication.stokes_tables.StokesTable.load`.
+    """
+    table = StokesTable.load(delta_over_a, **table_options)
+    return ForceModel("stokes", STOKES_TABLE, table=tuple(table.arrays),
+                      options={"delta_over_a": delta_over_a, **table_options})
 
 
 def force_model(name: str, **options) -> ForceModel:
-    """The adapter for ``name`` ("closed-form" or "reynolds")."""
+    """The adapter for ``name`` ("closed-form", "reynolds" or "stokes")."""
     if name == "closed-form":
         return closed_form()
     if name == "reynolds":
         return reynolds(**options)
+    if name == "stokes":
+        return stokes(**options)
     msg = f"forces must be one of {', '.join(FORCE_MODELS)}, got {name!r}"
     raise ValueError(msg)
 
 
 @njit(cache=True, nogil=True)
-def evaluate(code, profile, sommerfeld, rule, points_per_cell, a, b, mu, length, kappa, omk,
+def evaluate(code, profile, sommerfeld, rule, points_per_cell, table, a, b, mu, length, kappa, omk,
              eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m) for the model ``code``; see :class:`ForceModel`."""
     if code == CLOSED_FORM:
         return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    if code == STOKES_TABLE:
+        zeta_nodes, node_ratios, contact = table
+        return table_forces(zeta_nodes, node_ratios, contact, a, b - a, mu, length, kappa, omk,
+                            eps_dot, w_a, w_b)
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)

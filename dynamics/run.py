@@ -19,8 +19,8 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     Raises
     ------
     SceneError
-        For a choice this version cannot model (contact, cavitation, Stokes
-        forces and the automatic choices come with their own models).
+        For a choice this version cannot model (contact, cavitation and the
+        automatic choices come with their own models).
     """
     model = scene.model
     if scene.contact is not None:
@@ -30,13 +30,11 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     if model.equations == "auto" or model.forces == "auto":
         raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
                                "equations (full, reduced) and forces (closed-form, reynolds)")
-    if model.forces == "stokes":
-        raise _refuse("model.forces", "Stokes forces in trajectories need the resistance tables; "
-                                      "use closed-form or reynolds")
     if model.equations == "reduced":
         return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
                                 apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
                                 progress=progress)
-    options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
+    options = {"closed-form": {}, "reynolds": {"n": model.n, "grid": model.grid},
+               "stokes": {"delta_over_a": scene.apparatus.delta_over_a}}[model.forces]
     return simulate_full(scene.apparatus, force_model(model.forces, **options), scene.initial,
                          scene.run.t_end, rtol=scene.run.rtol, method=method, progress=progress)

@@ -7,13 +7,14 @@ from pathlib import Path
 
 from dynamics.files import write_json, write_text
 
-from . import lubrication_checks
+from . import corrections, lubrication_checks
 
 __all__ = ["GROUPS", "run_all"]
 
 # title -> module with run(outdir, quick) -> (checks, figure names, paragraph)
 GROUPS = {
     "Reynolds solver against the lubrication closed forms": lubrication_checks,
+    "Lubrication against full Stokes at finite delta/a": corrections,
 }
 
 
