@@ -18,10 +18,14 @@ CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "p
 
 
 def trajectory_csv(trajectory: Trajectory) -> str:
-    """CSV text with a header row; SI units (or scaled ones for a dimensionless run)."""
-    data = np.column_stack([trajectory.columns[name] for name in CSV_COLUMNS])
+    """CSV text with a header row; SI units (or scaled ones for a dimensionless run).
+
+    The contract's columns come first, then any a model adds (the contact phase and forces).
+    """
+    names = list(CSV_COLUMNS) + [k for k in trajectory.columns if k not in CSV_COLUMNS]
+    data = np.column_stack([trajectory.columns[name] for name in names])
     buf = io.StringIO()
-    np.savetxt(buf, data, delimiter=",", header=",".join(CSV_COLUMNS), comments="", fmt="%.17g")
+    np.savetxt(buf, data, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
     return buf.getvalue()
 
 
@@ -52,6 +56,7 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "units": ("times and rates in tau, eps in delta, x_b in b" if trajectory.dimensionless
                   else "SI: s, m, rad, rad/s; mean_speed in m/s"),
         **trajectory.groups,
+        **trajectory.info,
     }
     out.update(extra)
     return out

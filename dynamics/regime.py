@@ -3,8 +3,10 @@
 Regimes (section 3 of the paper): "runaway" (the line of centres winds round
 with a rotation rate that keeps growing, (3.11)), "rocking" (the inner cylinder
 sinks towards contact while the line of centres swings back and forth, (3.9)),
-"sedimenting" (it sinks without swinging, as on a level plane, (3.3)), and
-"transient" when the run ended before any of these showed.
+"sedimenting" (it sinks without swinging, as on a level plane, (3.3)),
+"locked rolling" and "sliding rolling" (steady rolling in contact with rough
+walls, section 5: the phase held over the second half and Omega_b steady to
+1%), and "transient" when the run ended before any of these showed.
 """
 
 from __future__ import annotations
@@ -15,7 +17,8 @@ import numpy as np
 
 __all__ = ["REGIMES", "classify"]
 
-REGIMES = ("runaway", "rocking", "sedimenting", "transient")
+REGIMES = ("runaway", "rocking", "sedimenting", "locked rolling", "sliding rolling", "transient")
+_ROLLING = {1.0: "sliding rolling", 2.0: "locked rolling"}  # by contact phase code
 
 
 def classify(trajectory) -> tuple[str, dict]:
@@ -32,6 +35,12 @@ def classify(trajectory) -> tuple[str, dict]:
                 "omega_b_tau_growth_late": growth, "stop_event": trajectory.event}
     if trajectory.event in ("runaway", "reynolds") or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late][0])):
         return "runaway", evidence
+    phase = c.get("phase")
+    if phase is not None and phase[late].size and np.all(phase[late] == phase[-1]) and phase[-1] in _ROLLING:
+        spread = float(np.ptp(omega_b[late]) / max(abs(omega_b[-1]), 1e-300))
+        evidence["omega_b_relative_spread_late"] = spread
+        if spread < 0.01:
+            return _ROLLING[float(phase[-1])], evidence
     if kappa[-1] >= 0.95 and abs(turns) < 1.0:
         return ("rocking" if swings >= 2 else "sedimenting"), evidence
     return "transient", evidence

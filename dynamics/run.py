@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from .forcemodels import force_model
 from .scene import Scene, SceneError
-from .simulate import Trajectory, simulate_full, simulate_reduced
+from .contact import ContactParams
+from .simulate import Trajectory, simulate_contact, simulate_full, simulate_reduced
 
 __all__ = ["run_scene"]
 
@@ -23,13 +24,22 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
         automatic choices come with their own models).
     """
     model = scene.model
-    if scene.contact is not None:
-        raise _refuse("contact", "contact is not modelled yet; remove the [contact] section")
+    rough = scene.contact
+    if rough is not None and model.equations == "full":
+        raise _refuse("contact", "contact is modelled in the reduced equations only; "
+                                 "set model.equations = 'reduced' or remove the [contact] section")
+    if rough is not None and rough.roughness_amplitude > 0:
+        raise _refuse("contact.roughness_amplitude", "a minimum gap that varies along the surfaces is "
+                                                     "not modelled yet; use 0 (a uniform kappa*)")
     if scene.cavitation is not None:
         raise _refuse("cavitation", "cavitation is not modelled yet; remove the [cavitation] section")
     if model.equations == "auto" or model.forces == "auto":
         raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
                                "equations (full, reduced) and forces (closed-form, reynolds)")
+    if model.equations == "reduced" and rough is not None:
+        return simulate_contact(scene.groups.reduced_params, ContactParams(rough.kappa_star, rough.psi),
+                                scene.initial, scene.t_end_tau, apparatus=scene.apparatus,
+                                rtol=scene.run.rtol, method=method, progress=progress)
     if model.equations == "reduced":
         return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
                                 apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,

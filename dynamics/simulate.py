@@ -13,13 +13,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import full, reduced
+from . import contact, full, reduced
 from .forcemodels import ForceModel
 from .integrate import Integration, integrate
 from .scene import Initial
 from .validity import GAP_FLOOR, MAX_REYNOLDS, MAX_TURNS, gap_floor_event, reynolds_event
 
-__all__ = ["Initial", "Trajectory", "simulate_full", "simulate_reduced"]
+__all__ = ["Initial", "Trajectory", "simulate_full", "simulate_reduced", "simulate_contact"]
+
+# contact phases as numbers in the trajectory table
+PHASE_CODES = {contact.FREE: 0, contact.SLIDING: 1, contact.LOCKED: 2}
 
 
 @dataclass
@@ -27,7 +30,10 @@ class Trajectory:
     """Columns of a run and how it ended.
 
     ``columns`` has t, t_tau, x_b, eps, chi, kappa, one_minus_kappa, phi,
-    omega_a, omega_b (SI, or scaled when ``dimensionless``).
+    omega_a, omega_b (SI, or scaled when ``dimensionless``), and for a run with
+    contact the phase (codes in :data:`PHASE_CODES`) and the scaled reaction
+    c_eps and friction c_chi of (5.1)-(5.2). ``info`` carries what a table
+    cannot, such as the list of contact switches.
     """
 
     columns: dict[str, np.ndarray]
@@ -44,6 +50,7 @@ class Trajectory:
     dimensionless: bool
     method: str
     groups: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
 
     @property
     def t(self) -> np.ndarray:
@@ -103,15 +110,37 @@ def simulate_reduced(params: reduced.ReducedParams, initial: Initial, t_end_tau:
     run = reduced.simulate_reduced(params, t_end_tau, initial.kappa, initial.phi, initial.omega_a * tau,
                                    initial.omega_b * tau, rtol=rtol, atol=rtol, method=method,
                                    gap_floor=gap_floor, max_turns=max_turns, progress=progress)
+    return _from_reduced(run, params, apparatus, method, {})
+
+
+def simulate_contact(params: reduced.ReducedParams, rough: contact.ContactParams, initial: Initial,
+                     t_end_tau: float, *, apparatus=None, rtol: float = 1e-8, method: str = "LSODA",
+                     max_turns: float = MAX_TURNS, progress: str | None = None) -> Trajectory:
+    """The reduced model with rough contact at kappa* (section 5); output as :func:`simulate_reduced`."""
+    tau = apparatus.tau if apparatus is not None else 1.0
+    run = contact.simulate_contact(params, rough, t_end_tau, initial.kappa, initial.phi,
+                                   initial.omega_a * tau, initial.omega_b * tau, rtol=rtol, atol=rtol,
+                                   method=method, max_turns=max_turns, progress=progress)
+    extra = {"phase": np.array([PHASE_CODES[p] for p in run.phase], dtype=float),
+             "c_eps": run.c_eps, "c_chi": run.c_chi}
+    info = {"phase_codes": PHASE_CODES, "final_phase": str(run.phase[-1]) if run.phase.size else "",
+            "switches": [{"t": sw.t * tau, "from": sw.old, "to": sw.new} for sw in run.switches]}
+    trajectory = _from_reduced(run, params, apparatus, method, extra)
+    trajectory.info.update(info)
+    return trajectory
+
+
+def _from_reduced(run, params, apparatus, method: str, extra: dict) -> Trajectory:
+    """A :class:`Trajectory` from a reduced-model run (times in tau), in SI when there is an apparatus."""
     if apparatus is not None:
-        delta, b, alpha = apparatus.delta, apparatus.b, apparatus.alpha
+        tau, delta, b, alpha = apparatus.tau, apparatus.delta, apparatus.b, apparatus.alpha
         groups = _groups(apparatus)
     else:
-        delta, b, alpha = 1.0, 1.0, 0.0
+        tau, delta, b, alpha = 1.0, 1.0, 1.0, 0.0
         groups = {"s": params.s, "upsilon": params.upsilon, "mu": params.mu_ratio}
     columns = {"t": run.t * tau, "t_tau": run.t, "kappa": run.kappa, "one_minus_kappa": run.one_minus_kappa,
                "eps": run.kappa * delta, "chi": run.phi - alpha, "phi": run.phi, "omega_a": run.omega_a / tau,
-               "omega_b": run.omega_b / tau, "x_b": run.x_b * b}
+               "omega_b": run.omega_b / tau, "x_b": run.x_b * b, **extra}
     status = {0: "completed", 1: "stopped"}.get(run.status, run.stop_reason)
     return Trajectory(columns=columns, equations="reduced", forces="closed-form", status=status,
                       reason=run.message, event=run.stop_reason if run.status == 1 else "",

@@ -93,3 +93,44 @@ def test_a_failing_right_hand_side_is_reported_not_raised():
     run = integrate(fun, np.zeros(1), 5.0, method="RK45")
     assert run.status == "failed" and "ZeroDivisionError" in run.reason
     assert run.t[-1] <= 1.0 + 1e-12 and run.t.size > 1
+
+
+FIGURE_7 = """
+[groups]
+s = 0.25
+upsilon = 1.0
+mu = 1.0
+[initial]
+kappa = 0.5
+phi = 0.3
+[model]
+equations = "reduced"
+[contact]
+kappa_star = 0.98
+psi = {psi}
+[run]
+t_end_tau = 300
+"""
+
+
+@pytest.mark.parametrize(("psi", "regime"), [(0.05, "sliding rolling"), (0.5, "locked rolling")])
+def test_a_contact_scene_settles_into_steady_rolling(tmp_path, capsys, psi, regime):
+    """The paper's figure 7 and 8 parameters: contact at t = 5.82 tau, then the steady state of (5.6)-(5.11)."""
+    from dynamics.contact import steady_state
+
+    scene = tmp_path / "contact.toml"
+    scene.write_text(FIGURE_7.format(psi=psi))
+    assert main(["run", str(scene), "-o", str(tmp_path / "out"), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["regime"] == regime and summary["dimensionless"]
+    assert summary["switches"][0]["t"] == pytest.approx(5.8207, abs=1e-4)
+    steady = steady_state(0.25, 0.98, psi)
+    assert summary["final"]["omega_b"] == pytest.approx(steady.omega_b, rel=1e-6)
+    header = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()[0]
+    assert header.endswith("phase,c_eps,c_chi")
+
+
+def test_contact_in_the_full_model_is_refused(tmp_path, capsys):
+    assert main(["run", "-o", str(tmp_path / "out"), "--set", "contact.kappa_star=0.98",
+                 "--set", "contact.psi=0.1"]) == 2
+    assert "reduced equations only" in capsys.readouterr().err
