@@ -88,7 +88,10 @@ N_INTEGRALS = 11
 @njit(cache=True, nogil=True)
 def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
                    cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, out):
-    """Fill ``out[j]`` with the integrals over cell j listed by the column constants above.
+    """Add to ``out[j]`` the integrals over cell j listed by the column constants above.
+
+    With ``out`` of one row, every cell adds to that row: the whole-period
+    integrals, which is all the full film needs, without storing the cells.
 
     Parameters
     ----------
@@ -109,7 +112,8 @@ def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
         Points per cell.
     h_tab, q_tab : ndarray, shape (N*m,) or (0,)
         Gap and squeeze flux at the points, for TABULATED.
-    out : ndarray, shape (N, N_INTEGRALS)
+    out : ndarray, shape (N, N_INTEGRALS) or (1, N_INTEGRALS)
+        Zero on entry.
     """
     n_cells = spsi.size // m
     zeta_g = math.sqrt(omk_g * (1.0 + kappa_g))
@@ -117,6 +121,7 @@ def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
     inv_delta = 1.0 / delta
     eps = kappa * delta
     vers_weight = kappa >= 0.5
+    per_cell = out.shape[0] == n_cells
     k = 0
     for j in range(n_cells):
         s1 = s2 = s3 = sq3 = sq2 = 0.0
@@ -159,10 +164,18 @@ def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
             om3 += om * w3
             omq3 += om * q * w3
             k += 1
-        row = out[j]
-        row[H1], row[H2], row[H3], row[QH3], row[QH2] = s1, s2, s3, sq3, sq2
-        row[SH2], row[SH3], row[SQH3] = sin2, sin3, sinq3
-        row[OH2], row[OH3], row[OQH3] = om2, om3, omq3
+        row = out[j] if per_cell else out[0]
+        row[H1] += s1
+        row[H2] += s2
+        row[H3] += s3
+        row[QH3] += sq3
+        row[QH2] += sq2
+        row[SH2] += sin2
+        row[SH3] += sin3
+        row[SQH3] += sinq3
+        row[OH2] += om2
+        row[OH3] += om3
+        row[OQH3] += omq3
 
 
 @njit(cache=True, nogil=True)
@@ -171,8 +184,8 @@ def full_film(integrals, u_a, u_b, phi_out):
 
     Parameters
     ----------
-    integrals : ndarray, shape (N, N_INTEGRALS)
-        From :func:`cell_integrals`.
+    integrals : ndarray, shape (N, N_INTEGRALS) or (1, N_INTEGRALS)
+        From :func:`cell_integrals`; per cell when nodal pressures are wanted.
     u_a, u_b : float
         Surface speeds of the inner and outer wall in the frame of the line of centres (m/s).
     phi_out : ndarray, shape (N,) or (0,)
@@ -213,7 +226,7 @@ def film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, 
     rotate the force from a grid centred at angle c back to the line of centres.
     """
     u_b = (b if kind == ECCENTRIC else a) * w_b
-    integrals = np.empty((spsi.size // m, N_INTEGRALS))
+    integrals = np.zeros((phi_out.size if phi_out.size else 1, N_INTEGRALS))
     cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, m,
                    h_tab, q_tab, integrals)
     i_sin, i_chi, i_torque = full_film(integrals, a * w_a, u_b, phi_out)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from dynamics.files import write_json, write_text
 
-from . import corrections, lubrication_checks
+from . import contact_checks, corrections, lubrication_checks
 
 __all__ = ["GROUPS", "run_all"]
 
@@ -15,6 +15,7 @@ __all__ = ["GROUPS", "run_all"]
 GROUPS = {
     "Reynolds solver against the lubrication closed forms": lubrication_checks,
     "Lubrication against full Stokes at finite delta/a": corrections,
+    "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
 }
 
 
