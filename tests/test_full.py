@@ -10,6 +10,7 @@ from dynamics.apparatus import Apparatus, preset
 from dynamics.forcemodels import closed_form, reynolds
 from dynamics.reduced import ReducedParams
 from dynamics.simulate import Initial, simulate_full, simulate_reduced
+from validation.dynamics_checks import inertial_time
 
 RTOL = 1e-10
 
@@ -69,12 +70,6 @@ def _sedimentation_deviation(apparatus, kappa0, t_from_tau=0.0):
     late = t >= t_from_tau
     assert np.max(np.abs(run.columns["phi"] - math.pi)) == 0.0  # straight down, no swing
     return np.max(np.abs(run.columns["kappa"][late] - big_t[late] / np.sqrt(1 + big_t[late] ** 2)))
-
-
-def inertial_time(apparatus):
-    """t_i / tau = m_eff / (R_eps tau) at kappa = 0 = Upsilon (m_eff/m_a)(delta/a)^2: how long the
-    inner cylinder takes to reach its lubrication-limited speed from rest (R_eps from (2.5))."""
-    return apparatus.upsilon * (apparatus.m_eff / apparatus.m_a) * apparatus.delta_over_a**2
 
 
 @pytest.mark.parametrize("ratio", [0.03, 0.01, 0.003])

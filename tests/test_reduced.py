@@ -26,6 +26,7 @@ from dynamics.special import (
     slow_approach,
     steady_rolling,
 )
+from validation.dynamics_checks import rocking_envelope
 
 FIG2 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figure 2
 
@@ -226,15 +227,6 @@ def _rocking_run(s, upsilon, mu_ratio, zeta0=0.1, t_end=1000.0, kick=0.05):
     return traj
 
 
-def _envelope(t, x):
-    """Peaks of |x| with a parabola through each sampled maximum: times and heights."""
-    ax = np.abs(x)
-    i = np.nonzero((ax[1:-1] >= ax[:-2]) & (ax[1:-1] > ax[2:]))[0] + 1
-    y0, y1, y2 = ax[i - 1], ax[i], ax[i + 1]
-    shift = 0.5 * (y0 - y2) / (y0 - 2.0 * y1 + y2)
-    return t[i] + shift * (t[1] - t[0]), y1 - 0.25 * (y0 - y2) * shift
-
-
 @pytest.mark.parametrize("mu_ratio", [1.0, 3.0])
 def test_rocking_decay_exponent(mu_ratio):
     """The envelope of phi - phi* decays as zeta^q, q of (3.10), within 5%.
@@ -250,7 +242,7 @@ def test_rocking_decay_exponent(mu_ratio):
     """
     s = 0.25
     traj = _rocking_run(s, 1.0, mu_ratio)
-    t_peak, amplitude = _envelope(traj.t, traj.phi - contact_equilibrium(s))
+    t_peak, amplitude = rocking_envelope(traj.t, traj.phi - contact_equilibrium(s))
     zeta = np.sqrt(traj.one_minus_kappa * (1.0 + traj.kappa))
     late = t_peak > 100.0
     exponent = np.polyfit(np.log(np.interp(t_peak[late], traj.t, zeta)),
@@ -300,7 +292,7 @@ def test_rocking_frequency_near_contact():
     """
     s, upsilon, mu_ratio = 0.25, 1.0, 1.0
     traj = _rocking_run(s, upsilon, mu_ratio, zeta0=0.01, t_end=200.0)
-    t_peak, _ = _envelope(traj.t, traj.phi - contact_equilibrium(s))
+    t_peak, _ = rocking_envelope(traj.t, traj.phi - contact_equilibrium(s))
     half_period = np.mean(np.diff(t_peak))
     assert math.pi / half_period == pytest.approx(rocking_frequency(s, upsilon, mu_ratio), rel=0.02)
 
@@ -338,7 +330,7 @@ def test_rocking_decay_exponent_wide(mu_ratio):
     """As :func:`test_rocking_decay_exponent` over q's whole range, three decades in zeta, 1%."""
     s = 0.5
     traj = _rocking_run(s, 0.5, mu_ratio, zeta0=0.1, t_end=5000.0)
-    t_peak, amplitude = _envelope(traj.t, traj.phi - contact_equilibrium(s))
+    t_peak, amplitude = rocking_envelope(traj.t, traj.phi - contact_equilibrium(s))
     zeta = np.sqrt(traj.one_minus_kappa * (1.0 + traj.kappa))
     late = t_peak > 100.0
     exponent = np.polyfit(np.log(np.interp(t_peak[late], traj.t, zeta)),

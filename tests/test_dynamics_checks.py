@@ -1,0 +1,64 @@
+"""The equations-of-motion validation group, and the runaway closed forms it derives."""
+
+import math
+
+import numpy as np
+import pytest
+
+from dynamics.apparatus import Apparatus, preset
+from validation import dynamics_checks
+from validation.dynamics_checks import critical_slope, runaway_estimates
+
+
+def test_quick_group_passes(tmp_path):
+    checks, figures, text = dynamics_checks.run(tmp_path, quick=True)
+    failed = [f"{c.name}: {c.measured:.6g} vs {c.reference:.6g} ({c.note})" for c in checks if not c.passed]
+    assert not failed, "\n".join(failed)
+    assert figures == [] and "runaway" in text
+    assert len(checks) > 30
+
+
+def test_mean_root_inertia_is_the_elliptic_integral():
+    """<sqrt(I_0 + B cos chi)> in closed form (complete elliptic E) against the periodic trapezoid rule.
+
+    a_0 = M g sin(alpha) b^2 / <sqrt(I)>^2, so the lossless acceleration is recovered from a sampled mean.
+    """
+    ap = preset("aluminium", alpha=math.radians(12.0))
+    est = runaway_estimates(ap)
+    i_0 = 0.5 * ap.m_a * ap.a**2 + (ap.M + ap.m_b) * ap.b**2 + ap.m_eff * ap.delta**2
+    chi = np.linspace(0.0, 2.0 * math.pi, 64, endpoint=False)
+    mean_sqrt = np.mean(np.sqrt(i_0 + 2.0 * ap.m_a_reduced * ap.b * ap.delta * np.cos(chi)))
+    assert est.lossless == pytest.approx(ap.M * ap.g * math.sin(ap.alpha) * ap.b**2 / mean_sqrt**2, rel=1e-14)
+
+
+@pytest.mark.parametrize("ratio", [1e-2, 1e-3])
+def test_runaway_tends_to_3_11_in_the_distinguished_limit(ratio):
+    """As delta/a -> 0 at fixed groups the co-rotating a_0 and the rigid body tend to the paper's (3.11)
+    with an O(delta/a) difference: a -> b and m_eff delta^2 -> 0."""
+    est = runaway_estimates(Apparatus.from_groups(1.5, 1.0, 2.0, ratio))
+    assert abs(est.lossless / est.paper - 1.0) < 2.0 * ratio
+    assert abs(est.rigid / est.paper - 1.0) < 2.0 * ratio
+
+
+def test_film_share_is_independent_of_slope_and_viscosity():
+    """f depends on the masses and radii only: the gap closes as t^-3 whatever the film's viscosity."""
+    base = runaway_estimates(preset("aluminium")).dissipated_fraction
+    other = runaway_estimates(preset("aluminium", alpha=math.radians(20.0), nu=5e-4)).dissipated_fraction
+    assert other == pytest.approx(base, rel=1e-13)
+    assert 0.005 < base < 0.007  # 0.60% for the aluminium apparatus
+
+
+def test_estimates_bracket_the_model_for_the_aluminium_runaway():
+    """(3.11) < (1 - f) a_0 < a_0 < rigid body: a < b lowers the inertia, m_eff delta^2 and the film raise it back."""
+    est = runaway_estimates(preset("aluminium"))
+    assert est.paper < est.model < est.lossless < est.rigid
+    assert est.observed == pytest.approx(2.0 / 3.0 * 9.80665 * math.sin(math.radians(5.0)), rel=1e-15)
+
+
+def test_critical_slope_of_the_aluminium_apparatus():
+    """A rest point at contact needs s b/a < 1: below 4.5 degrees for the aluminium apparatus."""
+    ap = preset("aluminium")
+    alpha_c = critical_slope(ap)
+    assert math.degrees(alpha_c) == pytest.approx(4.496, abs=1e-3)
+    at_critical = preset("aluminium", alpha=alpha_c)
+    assert at_critical.s * at_critical.b / at_critical.a == pytest.approx(1.0, rel=1e-12)
