@@ -83,11 +83,17 @@ def _add_forces(subparsers) -> None:
                    help=f"fluid density (kg/m^3), default {STEEL_OIL_RHO:g}")
     p.add_argument("--length", type=_number, default=STEEL_LENGTH,
                    help=f"axial length (m), default {STEEL_LENGTH:g}")
-    p.add_argument("--n", type=int, default=32, help="Reynolds: cells around the gap (default 32)")
+    p.add_argument("--n", type=int, default=32,
+                   help="Reynolds: cells around the gap (default 32; use a few hundred with cavitation)")
     p.add_argument("--grid", default="sommerfeld", choices=["sommerfeld", "uniform"],
                    help="Reynolds: grid uniform in the Sommerfeld angle or in theta")
     p.add_argument("--profile", default="thin", choices=["thin", "eccentric"],
                    help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
+    p.add_argument("--cavitation", default="none", choices=["none", "half-sommerfeld", "swift-stieber", "jfo"],
+                   help="Reynolds: cavitation model (default none: full film)")
+    p.add_argument("--p-cav", type=_number, default=0.0, help="Reynolds: cavitation pressure (Pa), default 0")
+    p.add_argument("--p-ref", type=_number, default=101325.0,
+                   help="Reynolds: pressure at the widest gap (Pa), default 101325")
     p.add_argument("--n-around", type=int, help="Stokes: cells around the annulus (default by delta/a)")
     p.add_argument("--n-across", type=int, help="Stokes: cells across the gap (default by delta/a)")
     p.add_argument("--flow", metavar="DIR",
@@ -131,7 +137,9 @@ def _run_forces(args) -> int:
                         omega_a=args.omega_a, omega_b=args.omega_b)
         fluid = Fluid(nu=args.nu, rho=args.rho)
         options = {"closed-form": {},
-                   "reynolds": {"n": args.n, "grid": args.grid, "profile": args.profile},
+                   "reynolds": {"n": args.n, "grid": args.grid, "profile": args.profile,
+                                **({"cavitation": args.cavitation, "p_cav": args.p_cav, "p_ref": args.p_ref}
+                                   if args.cavitation != "none" else {})},
                    "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
                               if v is not None}}
         models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (

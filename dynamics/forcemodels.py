@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from lubrication import _kernels
+from lubrication import _cavitation_kernels, _kernels
+from lubrication.cavitation import CAVITATION_MODELS
 from lubrication.closed_form import lubrication_forces
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
@@ -20,7 +21,7 @@ from lubrication.stokes_tables import RATIO_NAMES, StokesTable, table_forces
 
 __all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "reynolds", "stokes", "force_model", "evaluate"]
 
-CLOSED_FORM, REYNOLDS, STOKES_TABLE = 0, 1, 2
+CLOSED_FORM, REYNOLDS, STOKES_TABLE, CAVITATING = 0, 1, 2, 3
 FORCE_MODELS = ("closed-form", "reynolds", "stokes")
 
 _NO_ARRAY = np.empty(0)
@@ -47,6 +48,8 @@ class ForceModel:
         Gauss points per cell of the Reynolds grid.
     table : tuple of ndarray
         (zeta_nodes, node_ratios, contact) of a Stokes resistance table.
+    cavitation : tuple
+        (model code in CAVITATION_MODELS, p_cav, p_ref) of a cavitating Reynolds film.
     options : dict
         The options the model was built with, for the record.
     """
@@ -58,11 +61,13 @@ class ForceModel:
     rule: tuple = (_NO_ARRAY,) * 5
     points_per_cell: int = 1
     table: tuple = _NO_TABLE
+    cavitation: tuple = (0, 0.0, 0.0)
     options: dict = field(default_factory=dict)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
         f = evaluate(self.code, self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.table,
+                     self.cavitation,
                      annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
                      annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
@@ -73,18 +78,31 @@ def closed_form() -> ForceModel:
     return ForceModel("closed-form", CLOSED_FORM)
 
 
-def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1) -> ForceModel:
+def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1,
+             cavitation: str = "none", p_cav: float = 0.0, p_ref: float = 101325.0) -> ForceModel:
     """The numerical Reynolds solver; on the Sommerfeld grid its thin-gap forces are exact to
     rounding from N = 8, so a trajectory with it tracks the closed-form one to the integrator's
-    tolerance."""
+    tolerance. With ``cavitation`` (see :mod:`lubrication.cavitation`) the film may rupture;
+    its forces are then only piecewise smooth in the state and converge as dpsi^2."""
     _check_discretisation(n, grid, points_per_cell)
+    if cavitation not in CAVITATION_MODELS:
+        msg = f"cavitation must be one of {', '.join(CAVITATION_MODELS)}, got {cavitation!r}"
+        raise ValueError(msg)
     if profile not in PROFILES:
         msg = f"profile must be one of {', '.join(PROFILES)}, got {profile!r}"
         raise ValueError(msg)
     rule, _ = _psi_rule(n, points_per_cell)
     code = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
-    return ForceModel("reynolds", REYNOLDS, code, grid == "sommerfeld", rule, points_per_cell,
-                      options={"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell})
+    options = {"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell}
+    if cavitation == "none":
+        return ForceModel("reynolds", REYNOLDS, code, grid == "sommerfeld", rule, points_per_cell,
+                          options=options)
+    if not p_cav <= p_ref:
+        msg = f"p_cav must not exceed p_ref = {p_ref:g} Pa, got {p_cav:g} Pa"
+        raise ValueError(msg)
+    return ForceModel(f"reynolds/{cavitation}", CAVITATING, code, grid == "sommerfeld", rule, points_per_cell,
+                      cavitation=(CAVITATION_MODELS.index(cavitation), float(p_cav), float(p_ref)),
+                      options={**options, "cavitation": cavitation, "p_cav": p_cav, "p_ref": p_ref})
 
 
 def stokes(delta_over_a: float, **table_options) -> ForceModel:
@@ -111,8 +129,8 @@ def force_model(name: str, **options) -> ForceModel:
 
 
 @njit(cache=True, nogil=True)
-def evaluate(code, profile, sommerfeld, rule, points_per_cell, table, a, b, mu, length, kappa, omk,
-             eps_dot, w_a, w_b):
+def evaluate(code, profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, mu, length,
+             kappa, omk, eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m) for the model ``code``; see :class:`ForceModel`."""
     if code == CLOSED_FORM:
         return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
@@ -123,6 +141,14 @@ def evaluate(code, profile, sommerfeld, rule, points_per_cell, table, a, b, mu, 
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
+    if code == CAVITATING:
+        n = spsi.size // points_per_cell
+        model, p_cav, p_ref = cavitation
+        f_eps, f_chi, t_a, _ = _cavitation_kernels.cavitating_film_forces(
+            profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
+            cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell, none, none, 1.0, 0.0,
+            model, p_cav, p_ref, np.empty(n), np.empty(n), np.empty(n))
+        return f_eps, f_chi, t_a
     return _kernels.film_forces(profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b,
                                 kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell,
                                 none, none, 1.0, 0.0, none)

@@ -80,7 +80,7 @@ def _geometry(y, delta):
 
 
 @njit(cache=True, nogil=True)
-def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table):
+def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, cavitation):
     """dy/dt of the full model; ``p`` from :func:`params_array`, the model from a ForceModel."""
     a, b = p[_A], p[_B]
     delta = b - a
@@ -89,7 +89,7 @@ def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table):
     cx, cz = ez, -ex  # e_chi
     eps_dot = ex * vx + ez * vz
     chi_dot = (cx * vx + cz * vz) / eps if eps > 0.0 else 0.0
-    f_eps, f_chi, t_a = evaluate(code, profile, sommerfeld, rule, points_per_cell, table, a, b, p[_MU],
+    f_eps, f_chi, t_a = evaluate(code, profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, p[_MU],
                                  p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot, omega_b - chi_dot)
     fx = f_eps * ex + f_chi * cx
     fz = f_eps * ez + f_chi * cz
@@ -111,7 +111,7 @@ def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table):
 
 
 @njit(cache=True, nogil=True)
-def jacobian(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, typical):
+def jacobian(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, cavitation, typical):
     """d(rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
@@ -124,9 +124,9 @@ def jacobian(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, t
     for j in range(n):
         h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
         yp[j] = y[j] + h
-        up = rhs(t, yp, p, code, profile, sommerfeld, rule, points_per_cell, table)
+        up = rhs(t, yp, p, code, profile, sommerfeld, rule, points_per_cell, table, cavitation)
         yp[j] = y[j] - h
-        down = rhs(t, yp, p, code, profile, sommerfeld, rule, points_per_cell, table)
+        down = rhs(t, yp, p, code, profile, sommerfeld, rule, points_per_cell, table, cavitation)
         yp[j] = y[j]
         for i in range(n):
             jac[i, j] = (up[i] - down[i]) / (2.0 * h)
@@ -179,4 +179,4 @@ def observables(apparatus, y: np.ndarray) -> dict[str, np.ndarray]:
 def model_arguments(force_model: ForceModel) -> tuple:
     """The trailing arguments of :func:`rhs` and :func:`jacobian` that select the force model."""
     return (force_model.code, force_model.profile, force_model.sommerfeld, force_model.rule,
-            force_model.points_per_cell, force_model.table)
+            force_model.points_per_cell, force_model.table, force_model.cavitation)

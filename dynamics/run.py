@@ -20,8 +20,8 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     Raises
     ------
     SceneError
-        For a choice this version cannot model (contact, cavitation and the
-        automatic choices come with their own models).
+        For a choice this version cannot model (contact in the full equations,
+        varying roughness, and the automatic choices).
     """
     model = scene.model
     rough = scene.contact
@@ -31,8 +31,10 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     if rough is not None and rough.roughness_amplitude > 0:
         raise _refuse("contact.roughness_amplitude", "a minimum gap that varies along the surfaces is "
                                                      "not modelled yet; use 0 (a uniform kappa*)")
-    if scene.cavitation is not None:
-        raise _refuse("cavitation", "cavitation is not modelled yet; remove the [cavitation] section")
+    cavitation = scene.cavitation
+    if cavitation is not None and model.forces != "reynolds":
+        raise _refuse("model.forces", "a cavitating film needs the Reynolds solver: set "
+                                      "model.forces = 'reynolds' or remove the [cavitation] section")
     if model.equations == "auto" or model.forces == "auto":
         raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
                                "equations (full, reduced) and forces (closed-form, reynolds)")
@@ -46,5 +48,7 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
                                 progress=progress)
     options = {"closed-form": {}, "reynolds": {"n": model.n, "grid": model.grid},
                "stokes": {"delta_over_a": scene.apparatus.delta_over_a}}[model.forces]
+    if cavitation is not None:
+        options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
     return simulate_full(scene.apparatus, force_model(model.forces, **options), scene.initial,
                          scene.run.t_end, rtol=scene.run.rtol, method=method, progress=progress)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import astuple, dataclass
 
+from .cavitation import cavitating_forces
 from .closed_form import closed_form_forces
 from .geometry import Annulus, Fluid, FluidForces, Motion
 from .reynolds import reynolds_forces
@@ -21,7 +22,9 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
     ----------
     model : {"closed-form", "reynolds", "stokes"}
         Lubrication closed forms (2.5)-(2.7), the numerical Reynolds solver
-        (``options`` go to :func:`lubrication.reynolds.reynolds_forces`), or the
+        (``options`` go to :func:`lubrication.reynolds.reynolds_forces`; with
+        ``cavitation`` other than "none", and ``p_cav``, ``p_ref``, to
+        :func:`lubrication.cavitation.cavitating_forces`), or the
         finite-element Stokes solve at any gap width (``options`` set its mesh,
         see :func:`lubrication.stokes.stokes_forces`; needs the ``fem`` extra).
     """
@@ -31,6 +34,9 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
             raise ValueError(msg)
         return closed_form_forces(annulus, motion, fluid)
     if model == "reynolds":
+        cavitation = options.pop("cavitation", "none")
+        if cavitation != "none":
+            return cavitating_forces(annulus, motion, fluid, cavitation, **options)
         return reynolds_forces(annulus, motion, fluid, **options)
     if model == "stokes":
         from .stokes import stokes_forces  # scikit-fem is an optional extra

@@ -182,27 +182,48 @@ def _evaluate(name: str, fn: Callable, theta: np.ndarray) -> np.ndarray:
 _EMPTY = np.empty(0)
 
 
-def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, profile, n: int, grid: str,
-           points_per_cell: int, phi_out: np.ndarray):
-    """Run the kernel; return (f_eps, f_chi, T_a), the grid centre and kappa_g."""
+def film_setup(annulus: Annulus, profile, n: int, grid: str, points_per_cell: int):
+    """Everything a film kernel needs besides the motion, for a built-in or user profile.
+
+    Returns
+    -------
+    kind : int
+        Kernel profile code.
+    kappa, omk : float
+        Eccentricity and 1 - kappa (for a user profile, its own; see :func:`_tabulate`).
+    kappa_g, omk_g : float
+        Grid parameter and 1 - kappa_g.
+    centre : float
+        Angle of the grid's centre line from the line of centres (rad).
+    h_tab, q_tab : ndarray
+        Gap and squeeze flux at the points of a user profile, else empty.
+    rule : tuple of ndarray
+        cos, sin, 1 - cos, 1 + cos of psi and the weights at the points.
+    nodes : ndarray
+        psi at the pressure nodes.
+    """
     _check_discretisation(n, grid, points_per_cell)
-    (cpsi, spsi, vpsi, ppsi, wpsi), _ = _psi_rule(n, points_per_cell)
+    rule, nodes = _psi_rule(n, points_per_cell)
     kappa, omk = annulus.kappa, annulus.one_minus_kappa
     if isinstance(profile, GapProfile):
-        kind = _kernels.TABULATED
         kappa, centre, kappa_g, h_tab, q_tab = _tabulate(profile, annulus, n, points_per_cell, grid)
-        omk, omk_g = 1.0 - kappa, 1.0 - kappa_g
-    elif profile in PROFILES:
-        kind = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
-        centre, h_tab, q_tab = 0.0, _EMPTY, _EMPTY
-        kappa_g, omk_g = (kappa, omk) if grid == "sommerfeld" else (0.0, 1.0)
-    else:
+        return _kernels.TABULATED, kappa, 1.0 - kappa, kappa_g, 1.0 - kappa_g, centre, h_tab, q_tab, rule, nodes
+    if profile not in PROFILES:
         msg = f"profile must be one of {', '.join(PROFILES)} or a GapProfile, got {profile!r}"
         raise ValueError(msg)
+    kind = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
+    kappa_g, omk_g = (kappa, omk) if grid == "sommerfeld" else (0.0, 1.0)
+    return kind, kappa, omk, kappa_g, omk_g, 0.0, _EMPTY, _EMPTY, rule, nodes
+
+
+def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, profile, n: int, grid: str,
+           points_per_cell: int, phi_out: np.ndarray):
+    """Run the full-film kernel; return (f_eps, f_chi, T_a), the grid centre and kappa_g."""
+    kind, kappa, omk, kappa_g, omk_g, centre, h_tab, q_tab, rule, _ = film_setup(
+        annulus, profile, n, grid, points_per_cell)
     f = _kernels.film_forces(kind, annulus.a, annulus.b, fluid.mu, annulus.length, kappa, omk,
-                             motion.eps_dot, motion.w_a, motion.w_b, kappa_g, omk_g,
-                             cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell, h_tab, q_tab,
-                             math.cos(centre), math.sin(centre), phi_out)
+                             motion.eps_dot, motion.w_a, motion.w_b, kappa_g, omk_g, *rule,
+                             points_per_cell, h_tab, q_tab, math.cos(centre), math.sin(centre), phi_out)
     return f, centre, kappa_g
 
 

@@ -110,3 +110,15 @@ def test_stokes_without_the_fem_extra_says_how_to_install_it(monkeypatch, capsys
     # a geometry no other test solved, so that no cached factorisation stands in for the import
     code, out, err = run(capsys, "forces", "--model", "stokes", *GEOMETRY, "--kappa", "0.3711")
     assert code == 2 and 'pip install "snail-cylinder[fem]"' in err and out == ""
+
+
+def test_forces_with_cavitation(capsys):
+    """Below the cavitation pressure the film ruptures: the JFO forces differ from the full film's."""
+    args = ["forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256",
+            "--p-ref", "0", "--p-cav", "-5", "--json"]
+    code, out, _ = run(capsys, *args, "--cavitation", "jfo")
+    assert code == 0
+    jfo = json.loads(out)
+    code, out, _ = run(capsys, *args)
+    full = json.loads(out)
+    assert jfo["cavitation"] == "jfo" and abs(jfo["f_eps"] - full["f_eps"]) > 1e-3 * abs(full["f_chi"])

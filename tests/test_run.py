@@ -134,3 +134,16 @@ def test_contact_in_the_full_model_is_refused(tmp_path, capsys):
     assert main(["run", "-o", str(tmp_path / "out"), "--set", "contact.kappa_star=0.98",
                  "--set", "contact.psi=0.1"]) == 2
     assert "reduced equations only" in capsys.readouterr().err
+
+
+def test_a_cavitating_film_runs_through_the_scene(tmp_path, capsys):
+    code = main(["run", "-o", str(tmp_path / "out"), "--forces", "reynolds", "--set", "cavitation.model='jfo'",
+                 "--set", "model.n=64", "--t-end", "0.3", "--json"])
+    assert code == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["forces"] == "reynolds/jfo" and summary["status"] == "completed"
+
+
+def test_cavitation_with_closed_forms_is_refused(tmp_path, capsys):
+    assert main(["run", "-o", str(tmp_path / "out"), "--set", "cavitation.model='jfo'"]) == 2
+    assert "needs the Reynolds solver" in capsys.readouterr().err

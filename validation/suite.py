@@ -7,7 +7,7 @@ from pathlib import Path
 
 from dynamics.files import write_json, write_text
 
-from . import contact_checks, corrections, dynamics_checks, lubrication_checks
+from . import cavitation_checks, contact_checks, corrections, dynamics_checks, lubrication_checks
 
 __all__ = ["GROUPS", "run_all"]
 
@@ -16,6 +16,7 @@ GROUPS = {
     "Reynolds solver against the lubrication closed forms": lubrication_checks,
     "Equations of motion: figures 2 and 3, section 3, the distinguished limit and the runaway":
         dynamics_checks,
+    "Cavitation models in the Reynolds solver": cavitation_checks,
     "Lubrication against full Stokes at finite delta/a": corrections,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
 }
