@@ -7,7 +7,14 @@ from pathlib import Path
 
 from dynamics.files import write_json, write_text
 
-from . import cavitation_checks, contact_checks, corrections, dynamics_checks, lubrication_checks
+from . import (
+    cavitation_checks,
+    cavitation_trajectories,
+    contact_checks,
+    corrections,
+    dynamics_checks,
+    lubrication_checks,
+)
 
 __all__ = ["GROUPS", "run_all"]
 
@@ -17,6 +24,8 @@ GROUPS = {
     "Equations of motion: figures 2 and 3, section 3, the distinguished limit and the runaway":
         dynamics_checks,
     "Cavitation models in the Reynolds solver": cavitation_checks,
+    "Cavitation in the equations of motion: does a rupturing film stop the sinking? (section 7)":
+        cavitation_trajectories,
     "Lubrication against full Stokes at finite delta/a": corrections,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
 }
