@@ -158,12 +158,15 @@ __all__ = [
     "ContactParams",
     "ContactSteadyState",
     "ContactTrajectory",
+    "PhaseStart",
     "Switch",
     "compact_steady_rates",
+    "free_columns",
     "locked_friction",
     "locked_jacobian",
     "locked_rhs",
     "onset_of_sliding",
+    "run_phases",
     "simulate_contact",
     "sliding_jacobian",
     "sliding_rhs",
@@ -377,7 +380,118 @@ def locked_jacobian(t: float, y, params: ReducedParams, contact: ContactParams) 
 
 # -- the hybrid driver --------------------------------------------------------------
 
-def _enter_contact(params, contact, phi, omega_a, omega_b, x_b):
+class PhaseStart(NamedTuple):
+    """Where a phase of :func:`run_phases` starts.
+
+    Attributes
+    ----------
+    phase : str
+        "free", "sliding" or "locked".
+    y : ndarray
+        Initial state of the phase.
+    sigma : float
+        Sign of the sliding friction, 0 when not sliding.
+    on_constraint : bool
+        The phase starts where its guard is zero; handed to ``setup``.
+    switch : bool
+        Record the change as a :class:`Switch`; False restarts the same phase
+        without one.
+    """
+
+    phase: str
+    y: np.ndarray
+    sigma: float = 0.0
+    on_constraint: bool = False
+    switch: bool = True
+
+
+def run_phases(start: PhaseStart, setup, columns, transition, t_end: float, phi0: float, *,
+               rtol: float, atol: float, method: str, max_steps: int, max_switches: int,
+               progress: str | None) -> dict:
+    """Integrate a hybrid free/sliding/locked system phase by phase, from t = 0 to ``t_end``.
+
+    Each phase is integrated until ``t_end`` or a terminal event. An event
+    named "touch", "lift", "stick" or "slip" ends the phase and ``transition``
+    chooses the next one; any other stop ends the run.
+
+    Parameters
+    ----------
+    start : PhaseStart
+        The first phase.
+    setup : callable
+        ``setup(phase, sigma, on_constraint) -> (fun, jac, events)`` for
+        :func:`dynamics.integrate.integrate`.
+    columns : callable
+        ``columns(phase, sigma, y, t, phi_start) -> dict`` of output columns of
+        one phase's samples (state ``y``, shape (n_state, n)), with a "phi"
+        column continuing from ``phi_start``.
+    transition : callable
+        ``transition(phase, sigma, reason, y_end, phi_end) -> PhaseStart``: the
+        next phase after the event ``reason`` at the final state ``y_end``.
+    t_end : float
+        Final time in units of tau.
+    phi0 : float
+        Initial angle, the ``phi_start`` of the first phase.
+    rtol, atol, method, max_steps, max_switches, progress
+        As for :func:`simulate_contact`.
+
+    Returns
+    -------
+    dict
+        The fields of :class:`ContactTrajectory`: ``t``, ``phase``,
+        ``switches``, the status, the totals and the concatenated columns.
+
+    Raises
+    ------
+    ValueError
+        For out-of-range tolerances or an unknown method.
+    """
+    check_range("rtol", rtol, 0.0, 1.0, low_open=True)
+    check_range("atol", atol, 0.0, math.inf, low_open=True)
+    if method not in ("Radau", "BDF", "LSODA"):
+        msg = f"method must be one of 'Radau', 'BDF', 'LSODA', got {method!r}"
+        raise ValueError(msg)
+    phase, y, sigma, on_constraint, _ = start
+    t0, phi_now = 0.0, phi0
+    pieces, switches = [], []
+    totals = {"nfev": 0, "njev": 0, "steps": 0, "wall": 0.0}
+    while True:
+        fun, jac, events = setup(phase, sigma, on_constraint)
+        run = integrate(fun, y, t_end - t0, jac=jac, rtol=rtol, atol=atol, method=method, events=events,
+                        max_steps=max(max_steps - totals["steps"], 1), progress=progress)
+        for key, value in (("nfev", run.nfev), ("njev", run.njev), ("steps", run.steps),
+                           ("wall", run.wall_time_s)):
+            totals[key] += value
+        cols = columns(phase, sigma, run.y, run.t, phi_now)
+        pieces.append((t0 + run.t, np.full(run.t.size, phase), cols))
+        status = {"completed": 0, "stopped": 1}.get(run.status, -1)
+        stop_reason = {"completed": "t_end", "stopped": run.event}.get(run.status, run.status)
+        message = run.reason if status else f"reached t_end = {t_end:.6g}"
+        if stop_reason == "max_steps":
+            message = f"more than max_steps = {max_steps} steps by t = {t0 + float(run.t[-1]):.6g}"
+        if stop_reason not in _SWITCHES:
+            break
+        t_switch = t0 + float(run.t[-1])
+        if t_switch >= t_end:  # a switch exactly at t_end ends the run
+            status, stop_reason, message = 0, "t_end", f"reached t_end = {t_end:.6g}"
+            break
+        if len(switches) >= max_switches:
+            stop_reason = "max_switches"
+            message = f"more than max_switches = {max_switches} phase switches by t = {t_switch:.6g}"
+            break
+        phi_now, t0, old = float(cols["phi"][-1]), t_switch, phase
+        phase, y, sigma, on_constraint, switch = transition(old, sigma, stop_reason, run.y[:, -1], phi_now)
+        if switch:
+            switches.append(Switch(t0, old, phase))
+
+    merged = {name: np.concatenate([p[2][name] for p in pieces]) for name in pieces[0][2]}
+    return dict(t=np.concatenate([p[0] for p in pieces]), phase=np.concatenate([p[1] for p in pieces]),
+                switches=tuple(switches), status=status, stop_reason=stop_reason, message=message,
+                nfev=totals["nfev"], njev=totals["njev"], steps=totals["steps"], wall_time_s=totals["wall"],
+                **merged)
+
+
+def _enter_contact(params, contact, phi, omega_a, omega_b, x_b) -> PhaseStart:
     """Phase and state on touching, or on leaving a phase at D = 0 or at the friction bound.
 
     Locked if (5.5) holds (Omega_a jumps to Omega_b, the paper's rule); else
@@ -386,14 +500,28 @@ def _enter_contact(params, contact, phi, omega_a, omega_b, x_b):
     bound = -math.cos(phi) * contact.tan_psi
     c_lock = locked_friction(params, contact.kappa_star, phi)
     if abs(c_lock) < bound:
-        return LOCKED, np.array([phi, omega_b, x_b]), 0.0
+        return PhaseStart(LOCKED, np.array([phi, omega_b, x_b]))
     if contact.tan_psi == 0.0:
         sigma = 0.0
     elif omega_b != omega_a:
         sigma = math.copysign(1.0, omega_b - omega_a)
     else:
         sigma = -math.copysign(1.0, c_lock)
-    return SLIDING, np.array([phi, omega_a, omega_b, x_b]), sigma
+    return PhaseStart(SLIDING, np.array([phi, omega_a, omega_b, x_b]), sigma)
+
+
+def _transition(phase, sigma, reason, end, phi, params, contact) -> PhaseStart:
+    """The phase after the switch ``reason`` from ``phase`` at the final state ``end`` (module docstring)."""
+    if reason == "lift":  # a locked state carries one rate, (phi, Omega, X_b)
+        rates = (end[1], end[1], end[2]) if phase == LOCKED else (end[1], end[2], end[3])
+        return PhaseStart(FREE, _on_circle(phi, *rates, contact.r_star))
+    if phase == FREE:
+        return _enter_contact(params, contact, phi, end[2], end[3], end[4])
+    if phase == SLIDING:  # D = 0: lock if (5.5) holds, else slide the other way
+        return _enter_contact(params, contact, end[0], end[2], end[2], end[3])
+    # the friction bound is reached: slide, from D = 0
+    return PhaseStart(SLIDING, np.array([end[0], end[1], end[1], end[2]]),
+                      -math.copysign(1.0, locked_friction(params, contact.kappa_star, end[0])))
 
 
 def _phase_setup(phase, sigma, params, contact, x_b0, max_turns):
@@ -425,18 +553,27 @@ def _phase_setup(phase, sigma, params, contact, x_b0, max_turns):
             lambda t, y: locked_jacobian(t, y, params, contact), (lift, runaway, slip(1.0), slip(-1.0)))
 
 
+def free_columns(y, t, phi_start: float) -> dict:
+    """Output columns of free-flight samples, y = (xi, eta, Omega_a, Omega_b, X_b, ...) of shape (n_state, n).
+
+    phi is unwrapped and continues from ``phi_start``; C_e = C_x = 0.
+    """
+    n = t.size
+    r = np.hypot(y[0], y[1])
+    kappa, omk = stretched_to_kappa(r)
+    phi = np.unwrap(np.where(r > 0.0, np.arctan2(y[0], y[1]), phi_start))
+    if n:
+        phi += 2.0 * math.pi * round((phi_start - phi[0]) / (2.0 * math.pi))
+    zeros = np.zeros(n)
+    return dict(kappa=kappa, one_minus_kappa=omk, phi=phi, omega_a=y[2], omega_b=y[3],
+                x_b=y[4], c_eps=zeros, c_chi=zeros)
+
+
 def _columns(phase, sigma, y, t, phi_start, params, contact):
     """Output columns of one phase's samples (state y, shape (n_state, n))."""
-    n = t.size
     if phase == FREE:
-        r = np.hypot(y[0], y[1])
-        kappa, omk = stretched_to_kappa(r)
-        phi = np.unwrap(np.where(r > 0.0, np.arctan2(y[0], y[1]), phi_start))
-        if n:
-            phi += 2.0 * math.pi * round((phi_start - phi[0]) / (2.0 * math.pi))
-        zeros = np.zeros(n)
-        return dict(kappa=kappa, one_minus_kappa=omk, phi=phi, omega_a=y[2], omega_b=y[3],
-                    x_b=y[4], c_eps=zeros, c_chi=zeros)
+        return free_columns(y, t, phi_start)
+    n = t.size
     phi = y[0]
     cos = np.cos(phi)
     if phase == SLIDING:
@@ -491,66 +628,20 @@ def simulate_contact(params: ReducedParams, contact: ContactParams, t_end: float
     kappa0 = check_range("kappa0", kappa0, 0.0, contact.kappa_star, high_open=False)
     phi0 = check_finite("phi0", phi0)
     max_turns = check_range("max_turns", max_turns, 0.0, math.inf, low_open=True)
-    check_range("rtol", rtol, 0.0, 1.0, low_open=True)
-    check_range("atol", atol, 0.0, math.inf, low_open=True)
-    if method not in ("Radau", "BDF", "LSODA"):
-        msg = f"method must be one of 'Radau', 'BDF', 'LSODA', got {method!r}"
-        raise ValueError(msg)
     omega_a0, omega_b0, x_b0 = (check_finite(k, v) for k, v in
                                 (("omega_a0", omega_a0), ("omega_b0", omega_b0), ("x_b0", x_b0)))
 
     if kappa0 == contact.kappa_star and math.cos(phi0) < 0.0:
-        phase, y, sigma = _enter_contact(params, contact, phi0, omega_a0, omega_b0, x_b0)
+        start = _enter_contact(params, contact, phi0, omega_a0, omega_b0, x_b0)
     else:
-        phase, sigma = FREE, 0.0
-        y = initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0)
-    t0, phi_now = 0.0, phi0
-    pieces, switches = [], []
-    totals = {"nfev": 0, "njev": 0, "steps": 0, "wall": 0.0}
-    while True:
-        fun, jac, events = _phase_setup(phase, sigma, params, contact, x_b0, max_turns)
-        run = integrate(fun, y, t_end - t0, jac=jac, rtol=rtol, atol=atol, method=method, events=events,
-                        max_steps=max(max_steps - totals["steps"], 1), progress=progress)
-        for key, value in (("nfev", run.nfev), ("njev", run.njev), ("steps", run.steps),
-                           ("wall", run.wall_time_s)):
-            totals[key] += value
-        cols = _columns(phase, sigma, run.y, run.t, phi_now, params, contact)
-        pieces.append((t0 + run.t, np.full(run.t.size, phase), cols))
-        status = {"completed": 0, "stopped": 1}.get(run.status, -1)
-        stop_reason = {"completed": "t_end", "stopped": run.event}.get(run.status, run.status)
-        message = run.reason
-        if stop_reason == "max_steps":
-            message = f"more than max_steps = {max_steps} steps by t = {t0 + float(run.t[-1]):.6g}"
-        if stop_reason not in _SWITCHES:
-            break
-        t_switch = t0 + float(run.t[-1])
-        if t_switch >= t_end:  # a switch exactly at t_end ends the run
-            status, stop_reason, message = 0, "t_end", f"reached t_end = {t_end:.6g}"
-            break
-        if len(switches) >= max_switches:
-            stop_reason = "max_switches"
-            message = f"more than max_switches = {max_switches} phase switches by t = {t_switch:.6g}"
-            break
-        end = run.y[:, -1]
-        phi_now, t0, old = float(cols["phi"][-1]), t_switch, phase
-        if stop_reason == "lift":
-            phase, sigma = FREE, 0.0
-            y = _on_circle(phi_now, end[1], end[2], end[3], contact.r_star)
-        elif phase == FREE:
-            phase, y, sigma = _enter_contact(params, contact, phi_now, end[2], end[3], end[4])
-        elif phase == SLIDING:  # D = 0: lock if (5.5) holds, else slide the other way
-            phase, y, sigma = _enter_contact(params, contact, end[0], end[2], end[2], end[3])
-        else:  # the friction bound is reached: slide, from D = 0
-            sigma = -math.copysign(1.0, locked_friction(params, contact.kappa_star, end[0]))
-            phase, y = SLIDING, np.array([end[0], end[1], end[1], end[2]])
-        switches.append(Switch(t0, old, phase))
-
-    columns = {name: np.concatenate([p[2][name] for p in pieces]) for name in pieces[0][2]}
-    return ContactTrajectory(t=np.concatenate([p[0] for p in pieces]),
-                             phase=np.concatenate([p[1] for p in pieces]), switches=tuple(switches),
-                             status=status, stop_reason=stop_reason, message=message,
-                             nfev=totals["nfev"], njev=totals["njev"], steps=totals["steps"],
-                             wall_time_s=totals["wall"], **columns)
+        start = PhaseStart(FREE, initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0))
+    fields = run_phases(
+        start, lambda phase, sigma, _: _phase_setup(phase, sigma, params, contact, x_b0, max_turns),
+        lambda phase, sigma, y, t, phi: _columns(phase, sigma, y, t, phi, params, contact),
+        lambda phase, sigma, reason, end, phi: _transition(phase, sigma, reason, end, phi, params, contact),
+        t_end, phi0, rtol=rtol, atol=atol, method=method, max_steps=max_steps, max_switches=max_switches,
+        progress=progress)
+    return ContactTrajectory(**fields)
 
 
 # -- steady rolling (5.6)-(5.12), onset of sliding (6.4), speed (6.1) ----------------

@@ -5,6 +5,7 @@ from __future__ import annotations
 from .forcemodels import force_model
 from .scene import Scene, SceneError
 from .contact import ContactParams
+from .roughness import RoughContact
 from .simulate import Trajectory, simulate_contact, simulate_full, simulate_reduced
 
 __all__ = ["run_scene"]
@@ -20,17 +21,14 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     Raises
     ------
     SceneError
-        For a choice this version cannot model (contact in the full equations,
-        varying roughness, and the automatic choices).
+        For a choice this version cannot model (contact in the full equations
+        and the automatic choices).
     """
     model = scene.model
     rough = scene.contact
     if rough is not None and model.equations == "full":
         raise _refuse("contact", "contact is modelled in the reduced equations only; "
                                  "set model.equations = 'reduced' or remove the [contact] section")
-    if rough is not None and rough.roughness_amplitude > 0:
-        raise _refuse("contact.roughness_amplitude", "a minimum gap that varies along the surfaces is "
-                                                     "not modelled yet; use 0 (a uniform kappa*)")
     cavitation = scene.cavitation
     if cavitation is not None and model.forces != "reynolds":
         raise _refuse("model.forces", "a cavitating film needs the Reynolds solver: set "
@@ -39,9 +37,16 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
         raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
                                "equations (full, reduced) and forces (closed-form, reynolds)")
     if model.equations == "reduced" and rough is not None:
-        return simulate_contact(scene.groups.reduced_params, ContactParams(rough.kappa_star, rough.psi),
-                                scene.initial, scene.t_end_tau, apparatus=scene.apparatus,
-                                rtol=scene.run.rtol, method=method, progress=progress)
+        surfaces = ContactParams(rough.kappa_star, rough.psi)
+        if rough.roughness_amplitude > 0:
+            # the correlation is a distance rolled: metres, or units of b in a dimensionless scene
+            a, b = ((scene.apparatus.a, scene.apparatus.b) if scene.apparatus is not None
+                    else (1.0 / (1.0 + scene.groups.delta_over_a), 1.0))
+            surfaces = RoughContact.from_rolled_length(surfaces, rough.roughness_amplitude,
+                                                       rough.roughness_correlation, a, b, rough.seed)
+        return simulate_contact(scene.groups.reduced_params, surfaces, scene.initial, scene.t_end_tau,
+                                apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
+                                progress=progress)
     if model.equations == "reduced":
         return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
                                 apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,

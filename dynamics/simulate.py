@@ -13,9 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import contact, full, reduced
+from . import contact, full, reduced, rough_contact
 from .forcemodels import ForceModel
 from .integrate import Integration, integrate
+from .roughness import RoughContact
 from .scene import Initial
 from .validity import GAP_FLOOR, MAX_REYNOLDS, MAX_TURNS, gap_floor_event, reynolds_event
 
@@ -113,16 +114,26 @@ def simulate_reduced(params: reduced.ReducedParams, initial: Initial, t_end_tau:
     return _from_reduced(run, params, apparatus, method, {})
 
 
-def simulate_contact(params: reduced.ReducedParams, rough: contact.ContactParams, initial: Initial,
-                     t_end_tau: float, *, apparatus=None, rtol: float = 1e-8, method: str = "LSODA",
-                     max_turns: float = MAX_TURNS, progress: str | None = None) -> Trajectory:
-    """The reduced model with rough contact at kappa* (section 5); output as :func:`simulate_reduced`."""
+def simulate_contact(params: reduced.ReducedParams, rough: contact.ContactParams | RoughContact,
+                     initial: Initial, t_end_tau: float, *, apparatus=None, rtol: float = 1e-8,
+                     method: str = "LSODA", max_turns: float = MAX_TURNS,
+                     progress: str | None = None) -> Trajectory:
+    """The reduced model with rough contact (section 5); output as :func:`simulate_reduced`.
+
+    ``rough`` is a uniform minimum gap kappa* (:class:`dynamics.contact.ContactParams`)
+    or one that varies with the orientation of both surfaces
+    (:class:`dynamics.roughness.RoughContact`), whose material angles are added as columns.
+    """
     tau = apparatus.tau if apparatus is not None else 1.0
-    run = contact.simulate_contact(params, rough, t_end_tau, initial.kappa, initial.phi,
-                                   initial.omega_a * tau, initial.omega_b * tau, rtol=rtol, atol=rtol,
-                                   method=method, max_turns=max_turns, progress=progress)
+    simulate = (rough_contact.simulate_rough_contact if isinstance(rough, RoughContact)
+                else contact.simulate_contact)
+    run = simulate(params, rough, t_end_tau, initial.kappa, initial.phi, initial.omega_a * tau,
+                   initial.omega_b * tau, rtol=rtol, atol=rtol, method=method, max_turns=max_turns,
+                   progress=progress)
     extra = {"phase": np.array([PHASE_CODES[p] for p in run.phase], dtype=float),
              "c_eps": run.c_eps, "c_chi": run.c_chi}
+    if isinstance(run, rough_contact.RoughTrajectory):
+        extra.update(theta_a=run.theta_a, theta_b=run.theta_b)
     info = {"phase_codes": PHASE_CODES, "final_phase": str(run.phase[-1]) if run.phase.size else "",
             "switches": [{"t": sw.t * tau, "from": sw.old, "to": sw.new} for sw in run.switches]}
     trajectory = _from_reduced(run, params, apparatus, method, extra)

@@ -1,0 +1,314 @@
+r"""Rough surfaces: a minimum gap that varies with the orientation of both cylinders.
+
+Section 5 stops the approach of the cylinders at a uniform kappa*; its
+discussion adds that the minimum gap "more probably would be a complicated
+function of the orientations of both" cylinders, and suggests "slight
+stochastic variations in kappa*" (section 6.2: "the minimum gap is not likely to
+be the same all the way around the cylinder surfaces"). This module builds
+that function, kappa*(theta_a, theta_b); :mod:`dynamics.rough_contact` moves
+the contact of :mod:`dynamics.contact` onto it.
+
+Kinematics
+----------
+phi is the angle of the line of centres B -> A from the upward vertical and
+Omega_a, Omega_b the rotation rates, all clockwise. Let Theta_a, Theta_b be
+the angles the cylinders have turned, Theta' = Omega; Theta_b is X_b, the
+distance rolled in units of b. The asperities touch where the gap is narrowest,
+on the line of centres (theta = 0 of Appendix B). The material point of each
+surface there has the body angle
+
+    theta_a = phi - Theta_a,    theta_b = phi - Theta_b = phi - X_b,
+
+measured clockwise from the body-fixed mark that pointed up at Theta = 0. So
+theta_a' = phi' - Omega_a and theta_b' = phi' - Omega_b. In steady rolling
+(phi' = 0) the contact runs over the outer surface at speed b Omega_b, which
+is the speed down the plane, and over the inner one at a Omega_a. A distance
+ell rolled therefore spans the angle ell/a on the inner surface and ell/b on
+the outer.
+
+Random surfaces
+---------------
+Each surface carries a stationary, 2 pi-periodic random function of its body
+angle, a random Fourier series with a Gaussian spectrum:
+
+    f(theta) = sum_{k=1}^{K} c_k (A_k cos k theta + B_k sin k theta),
+    c_k^2 = w_k ~ exp(-k^2 lambda^2 / 2),   A_k, B_k ~ N(0, 1),
+
+where the coefficients A_k, B_k are drawn from a numpy Generator seeded by
+``seed``. The correlation of the series is
+
+    C(Delta) = sum_k w_k cos(k Delta) / sum_k w_k ~ exp(-Delta^2 / (2 lambda^2)).
+
+Poisson summation gives this Gaussian to within its periodisation and the
+missing k = 0 term, a relative O(lambda / sqrt(2 pi)). The correlation length
+lambda (an angle) is the standard deviation of that Gaussian. K stops where
+c_k / c_1 falls below the double-precision epsilon. Each series is then scaled
+so that its mean square around the circle is exactly 1. The scene's amplitude
+is therefore the standard deviation of sigma along the surfaces, not just its
+ensemble mean. The scaling is invariant under rotations, so the field stays
+stationary; it is Gaussian in the limit of many modes.
+
+The heights of the two surfaces add in the gap, so the minimum gap is
+
+    sigma(theta_a, theta_b) = sigma_mean (1 + amplitude g),
+    g = (f_a(theta_a) + f_b(theta_b)) / sqrt(2),
+
+where the surfaces are independent and equally rough. The mean of g over the
+torus is 0 and its mean square is 1. kappa* = 1 - sigma/delta then varies around
+kappa*_mean = 1 - sigma_mean/delta.
+
+Clipping rule
+-------------
+For amplitude 0.9 a Gaussian g goes below -1/0.9 about one time in eight, and
+there sigma would be negative. The rule is: neither the gap sigma nor the
+eccentricity kappa* may fall below a tenth of its mean. Each is left exactly
+unchanged above a fifth of its mean (the knee), and below the knee it is
+blended C^2 towards the floor:
+
+    x -> x                                     for x >= knee,
+    x -> floor + (knee - floor)/(1 + v + v^2), v = (knee - x)/(knee - floor),
+
+first for x = sigma/sigma_mean and then for kappa*/kappa*_mean. The blend is
+monotone and matches value, slope and curvature at the knee, so the contact
+equations stay smooth. The result is kappa* in (kappa*_mean/10,
+1 - sigma_mean/(10 delta)), strictly inside (0, 1). Where the clip acts, the
+mean and spread of sigma differ slightly from the unclipped ones. At
+amplitude 0 nothing is clipped, and kappa* is kappa*_mean exactly.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from lubrication.geometry import check_range
+
+from .contact import ContactParams
+
+__all__ = ["CLIP_FLOOR", "CLIP_KNEE", "MAX_MODES", "LocalGap", "RoughContact", "SurfaceHeights", "soft_floor"]
+
+CLIP_FLOOR = 0.1  # sigma and kappa* never fall below this fraction of their means
+CLIP_KNEE = 0.2  # ... and are left unchanged above this fraction
+# The series needs about 12/lambda modes; a shorter correlation than 12/MAX_MODES
+# (6e-4 rad) would cost more per evaluation than the whole contact model.
+MAX_MODES = 20_000
+_TAIL = 4.0 * math.log(1.0 / np.finfo(float).eps)  # c_k/c_1 < eps beyond k^2 = 1 + _TAIL/lambda^2
+_CHUNK = 4096  # samples per block when evaluating at many angles (memory ~ chunk x K)
+
+
+def soft_floor(x, floor: float, knee: float):
+    """The clipping rule: x above ``knee``, blended C^2 towards ``floor`` below it.
+
+    Parameters
+    ----------
+    x : float or array_like
+    floor, knee : float
+        0 <= floor < knee.
+
+    Returns
+    -------
+    value, slope : ndarray
+        The clipped x, in (floor, inf), and its derivative d value / dx in (0, 1].
+    """
+    x = np.asarray(x, dtype=float)
+    v = np.maximum((knee - x) / (knee - floor), 0.0)
+    blend = 1.0 / (1.0 + v * (1.0 + v))
+    below = x < knee
+    return (np.where(below, floor + (knee - floor) * blend, x),
+            np.where(below, (1.0 + 2.0 * v) * blend * blend, 1.0))
+
+
+@njit(cache=True, nogil=True)
+def _soft_floor_kernel(x, floor, knee):
+    """Scalar twin of :func:`soft_floor`."""
+    if x >= knee:
+        return x, 1.0
+    v = (knee - x) / (knee - floor)
+    blend = 1.0 / (1.0 + v * (1.0 + v))
+    return floor + (knee - floor) * blend, (1.0 + 2.0 * v) * blend * blend
+
+
+@njit(cache=True, nogil=True)
+def _heights_kernel(theta, cos_coefficients, sin_coefficients):
+    """Scalar twin of :meth:`SurfaceHeights.__call__`: f(theta) and f'(theta)."""
+    theta = theta % (2.0 * math.pi)
+    value, slope = 0.0, 0.0
+    for i in range(cos_coefficients.size):
+        k = i + 1.0
+        cos, sin = math.cos(k * theta), math.sin(k * theta)
+        value += cos * cos_coefficients[i] + sin * sin_coefficients[i]
+        slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
+    return value, slope
+
+
+@njit(cache=True, nogil=True)
+def _local_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
+    """Scalar twin of :meth:`RoughContact.local`: (kappa*, 1 - kappa*, d kappa*/d theta_a, .../d theta_b)."""
+    f_a, df_a = _heights_kernel(theta_a, cos_a, sin_a)
+    f_b, df_b = _heights_kernel(theta_b, cos_b, sin_b)
+    scale = amplitude / math.sqrt(2.0)
+    gap, gap_slope = _soft_floor_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
+    ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
+    clipped, ratio_slope = _soft_floor_kernel(ratio, CLIP_FLOOR, CLIP_KNEE)
+    chain = -gap_mean * ratio_slope * gap_slope
+    return (kappa_mean * clipped, gap_mean * gap + kappa_mean * (ratio - clipped),
+            chain * scale * df_a, chain * scale * df_b)
+
+
+@dataclass(frozen=True, eq=False)
+class SurfaceHeights:
+    """One surface's random height, f(theta), with unit mean square around the circle.
+
+    Build it with :meth:`from_rng`. ``cos_coefficients[k-1]`` and
+    ``sin_coefficients[k-1]`` multiply cos(k theta) and sin(k theta).
+    """
+
+    correlation: float  # correlation length lambda, an angle (rad)
+    cos_coefficients: np.ndarray
+    sin_coefficients: np.ndarray
+
+    @classmethod
+    def from_rng(cls, correlation: float, rng: np.random.Generator) -> SurfaceHeights:
+        """Draw a surface with correlation length ``correlation`` (rad, > 0) from ``rng``."""
+        lam = check_range("correlation", correlation, 0.0, math.inf, low_open=True, unit="rad")
+        n = max(1, int(math.sqrt(1.0 + _TAIL / lam**2)))
+        if n > MAX_MODES:
+            msg = (f"correlation must be at least {math.sqrt(_TAIL / MAX_MODES**2):.3g} rad (a series of "
+                   f"at most {MAX_MODES} modes), got {correlation!r}")
+            raise ValueError(msg)
+        k = np.arange(1, n + 1)
+        amplitude = np.exp(-0.25 * (k * lam) ** 2)
+        a, b = amplitude * rng.standard_normal((2, n))
+        rms = math.sqrt(0.5 * float(np.sum(a * a + b * b)))  # mean square over the circle (Parseval)
+        return cls(lam, a / rms, b / rms)
+
+    @property
+    def modes(self) -> int:
+        """K, the number of Fourier modes."""
+        return self.cos_coefficients.size
+
+    def __call__(self, theta):
+        """f(theta) and f'(theta) at body angles ``theta`` (rad, any shape)."""
+        theta = np.asarray(theta, dtype=float)
+        flat = np.mod(theta.ravel(), 2.0 * math.pi)  # keeps k theta small, f is 2 pi-periodic
+        k = np.arange(1, self.modes + 1)
+        value, slope = np.empty(flat.size), np.empty(flat.size)
+        for start in range(0, flat.size, _CHUNK):
+            phase = np.multiply.outer(flat[start:start + _CHUNK], k)
+            cos, sin = np.cos(phase), np.sin(phase)
+            value[start:start + _CHUNK] = cos @ self.cos_coefficients + sin @ self.sin_coefficients
+            slope[start:start + _CHUNK] = (cos @ (k * self.sin_coefficients)
+                                           - sin @ (k * self.cos_coefficients))
+        return value.reshape(theta.shape), slope.reshape(theta.shape)
+
+    def correlation_function(self, delta):
+        """C(Delta) = sum_k w_k cos(k Delta) / sum_k w_k, the correlation of the Gaussian series.
+
+        It is what the sample correlation of many surfaces averages to, up to
+        the O(1/K) bias of scaling each one to unit mean square.
+        """
+        k = np.arange(1, self.modes + 1)
+        weight = np.exp(-0.5 * (k * self.correlation) ** 2)
+        return np.cos(np.multiply.outer(np.asarray(delta, dtype=float), k)) @ weight / weight.sum()
+
+
+class LocalGap(NamedTuple):
+    """kappa* where the line of centres meets the surfaces, and its slopes along them.
+
+    All fields are floats, or arrays of the shape of the angles.
+    """
+
+    kappa: object  # kappa*(theta_a, theta_b), in (0, 1)
+    one_minus_kappa: object  # 1 - kappa* = sigma/delta, without cancellation
+    dkappa_a: object  # d kappa* / d theta_a
+    dkappa_b: object  # d kappa* / d theta_b
+
+    @property
+    def zeta(self):
+        """zeta* = sqrt(1 - kappa*^2)."""
+        return np.sqrt(self.one_minus_kappa * (1.0 + self.kappa))
+
+    @property
+    def r_star(self):
+        """The stretched radius r* = kappa*/zeta* of the constraint (see :mod:`dynamics.reduced`)."""
+        return self.kappa / self.zeta
+
+
+@dataclass(frozen=True, eq=False)
+class RoughContact:
+    """Rough contact whose minimum gap varies along both surfaces (module docstring).
+
+    Attributes
+    ----------
+    mean : ContactParams
+        kappa*_mean = 1 - sigma_mean/delta and the friction angle psi of section 5.
+    amplitude : float
+        Standard deviation of sigma along the surfaces over its mean, in [0, 1).
+    inner, outer : SurfaceHeights
+        The unit height functions f_a(theta_a) and f_b(theta_b).
+    """
+
+    mean: ContactParams
+    amplitude: float
+    inner: SurfaceHeights
+    outer: SurfaceHeights
+
+    def __post_init__(self):
+        object.__setattr__(self, "amplitude", check_range("amplitude", self.amplitude, 0.0, 1.0))
+
+    @classmethod
+    def from_seed(cls, mean: ContactParams, amplitude: float, correlation_a: float, correlation_b: float,
+                  seed: int) -> RoughContact:
+        """Both surfaces from one seed, with correlation lengths in rad on each surface.
+
+        ``seed`` (an int >= 0) seeds a :class:`numpy.random.SeedSequence` with one
+        independent child stream per surface, so that a seed always gives the same pair.
+        """
+        if not (isinstance(seed, (int, np.integer)) and seed >= 0):
+            msg = f"seed must be an integer >= 0, got {seed!r}"
+            raise ValueError(msg)
+        inner, outer = (np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(2))
+        return cls(mean, amplitude, SurfaceHeights.from_rng(correlation_a, inner),
+                   SurfaceHeights.from_rng(correlation_b, outer))
+
+    @classmethod
+    def from_rolled_length(cls, mean: ContactParams, amplitude: float, length: float, a: float, b: float,
+                           seed: int) -> RoughContact:
+        """Correlation given as a distance rolled, ``length``: the angles length/a and length/b.
+
+        ``length``, ``a`` and ``b`` are in one unit: metres, or b in a
+        dimensionless scene (then b = 1 and a = 1/(1 + delta/a)).
+        """
+        length = check_range("length", length, 0.0, math.inf, low_open=True)
+        a = check_range("a", a, 0.0, math.inf, low_open=True)
+        b = check_range("b", b, a, math.inf, low_open=False)
+        return cls.from_seed(mean, amplitude, length / a, length / b, seed)
+
+    def gap_ratio(self, theta_a, theta_b):
+        """x = sigma/sigma_mean = 1 + amplitude g before clipping, and dx/dtheta_a, dx/dtheta_b."""
+        f_a, df_a = self.inner(theta_a)
+        f_b, df_b = self.outer(theta_b)
+        scale = self.amplitude / math.sqrt(2.0)
+        return 1.0 + scale * (f_a + f_b), scale * df_a, scale * df_b
+
+    def local(self, theta_a, theta_b) -> LocalGap:
+        """kappa*(theta_a, theta_b), clipped as the module docstring states, and its slopes."""
+        x, dx_a, dx_b = self.gap_ratio(theta_a, theta_b)
+        gap, gap_slope = soft_floor(x, CLIP_FLOOR, CLIP_KNEE)
+        kappa_mean, gap_mean = self.mean.kappa_star, self.mean.one_minus_kappa_star
+        ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean  # kappa*/kappa*_mean before its floor
+        clipped, ratio_slope = soft_floor(ratio, CLIP_FLOOR, CLIP_KNEE)
+        chain = -gap_mean * ratio_slope * gap_slope  # d kappa*/dx
+        return LocalGap(kappa_mean * clipped, gap_mean * gap + kappa_mean * (ratio - clipped),
+                        chain * dx_a, chain * dx_b)
+
+    def local_at(self, theta_a: float, theta_b: float) -> LocalGap:
+        """:meth:`local` at one pair of angles, as floats: the compiled twin the integrator calls."""
+        return LocalGap(*_local_kernel(float(theta_a), float(theta_b), self.inner.cos_coefficients,
+                                       self.inner.sin_coefficients, self.outer.cos_coefficients,
+                                       self.outer.sin_coefficients, self.amplitude, self.mean.kappa_star,
+                                       self.mean.one_minus_kappa_star))
