@@ -28,7 +28,6 @@ from the project root; it writes ``benchmarks/results/cavitation.json`` and
 from __future__ import annotations
 
 import datetime
-import json
 import sys
 import time
 from pathlib import Path
@@ -39,7 +38,8 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.reynolds import _machine, _time_all, _Timer, _write_atomic  # noqa: E402
+from benchmarks.publish import publish  # noqa: E402
+from benchmarks.reynolds import _machine, _time_all, _Timer  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, reynolds_forces  # noqa: E402
 from lubrication._cavitation_kernels import cavitating_film_forces  # noqa: E402
 from lubrication._kernels import THIN, film_forces  # noqa: E402
@@ -188,12 +188,7 @@ def to_markdown(results: dict) -> str:
 
 def main() -> None:
     results = run()
-    out_dir = Path(__file__).resolve().parent / "results"
-    out_dir.mkdir(exist_ok=True)
-    _write_atomic(out_dir / "cavitation.json", json.dumps(results, indent=1) + "\n")
-    markdown = to_markdown(results)
-    _write_atomic(out_dir / "cavitation.md", markdown + "\n")
-    print(markdown)
+    publish("cavitation", results, to_markdown(results))
 
 
 if __name__ == "__main__":

@@ -59,7 +59,6 @@ from the project root; it writes ``benchmarks/results/reynolds.json`` and
 from __future__ import annotations
 
 import datetime
-import json
 import math
 import os
 import platform
@@ -78,6 +77,7 @@ from scipy.sparse.linalg import spsolve
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.publish import publish  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, resistance, reynolds_forces  # noqa: E402
 from lubrication._kernels import THIN, film_forces  # noqa: E402
 from lubrication.closed_form import lubrication_forces  # noqa: E402
@@ -709,21 +709,9 @@ def to_markdown(results: dict) -> str:
     return "\n".join(out)
 
 
-def _write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to a temporary file beside ``path``, then rename it over ``path``."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
-
-
 def main() -> None:
     results = run()
-    out_dir = Path(__file__).resolve().parent / "results"
-    out_dir.mkdir(exist_ok=True)
-    _write_atomic(out_dir / "reynolds.json", json.dumps(results, indent=1) + "\n")
-    markdown = to_markdown(results)
-    _write_atomic(out_dir / "reynolds.md", markdown + "\n")
-    print(markdown)
+    publish("reynolds", results, to_markdown(results))
 
 
 if __name__ == "__main__":

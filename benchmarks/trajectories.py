@@ -31,7 +31,6 @@ from the project root; it writes ``benchmarks/results/trajectories.json`` and
 from __future__ import annotations
 
 import datetime
-import json
 import math
 import os
 import resource
@@ -47,7 +46,8 @@ from scipy.integrate import RK45, solve_ivp
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.reynolds import _machine, _write_atomic  # noqa: E402
+from benchmarks.publish import publish  # noqa: E402
+from benchmarks.reynolds import _machine  # noqa: E402
 from dynamics import full  # noqa: E402
 from dynamics.forcemodels import closed_form  # noqa: E402
 from dynamics.scene import load_scene  # noqa: E402
@@ -320,12 +320,7 @@ def to_markdown(results: dict) -> str:
 
 def main() -> None:
     results = run()
-    out_dir = Path(__file__).resolve().parent / "results"
-    out_dir.mkdir(exist_ok=True)
-    _write_atomic(out_dir / "trajectories.json", json.dumps(results, indent=1) + "\n")
-    markdown = to_markdown(results)
-    _write_atomic(out_dir / "trajectories.md", markdown + "\n")
-    print(markdown)
+    publish("trajectories", results, to_markdown(results))
 
 
 if __name__ == "__main__":

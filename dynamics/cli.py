@@ -180,7 +180,7 @@ def _write_flow(outdir, annulus, motion, fluid, mesh_options) -> None:
 
     from lubrication.stokes import plot_flow, stokes_flow, write_vtu
 
-    from .files import save_figure
+    from lubrication.files import save_figure
 
     flow = stokes_flow(annulus, motion, fluid, **mesh_options)
     outdir = Path(outdir)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .files import save_figure, write_json, write_text
+from lubrication.files import save_figure, write_json, write_text
 from .regime import classify
 from .simulate import Trajectory
 

@@ -309,7 +309,6 @@ def _multilevel_active_set(integrals, u_a, u_b, model, y_cav, y, film, max_itera
     nodes; solving there first leaves a few nodes to move per level. Returns
     the total passes, or -1.
     """
-    half_u = 0.5 * (u_a + u_b)
     levels = [integrals]
     while levels[-1].shape[0] > COARSEST_LEVEL:
         levels.append(_coarsen(levels[-1]))

@@ -52,10 +52,10 @@ differ from those asked for, or that cannot be read without pickle, is rebuilt.
 
 from __future__ import annotations
 
+import io
 import logging
 import math
 import os
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -64,6 +64,7 @@ import numpy as np
 from numba import njit
 
 from .closed_form import lubrication_forces
+from .files import write_bytes
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_range
 
 __all__ = ["RATIO_NAMES", "KAPPA_MAX", "N_NODES", "TABLE_VERSION", "StokesTable", "cache_folder",
@@ -350,18 +351,10 @@ class StokesTable:
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the table as ``.npz`` (no pickled objects), whole or not at all."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                np.savez(fh, zeta_nodes=self.zeta_nodes, node_ratios=self.node_ratios,
-                         contact=self.contact, **self.settings)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return path
+        buf = io.BytesIO()
+        np.savez(buf, zeta_nodes=self.zeta_nodes, node_ratios=self.node_ratios, contact=self.contact,
+                 **self.settings)
+        return write_bytes(path, buf.getvalue())
 
     def ratios(self, kappa) -> np.ndarray:
         """Interpolated ratios at ``kappa`` (scalar or array in [0, 1)), shape (5,) + kappa's shape.

@@ -209,7 +209,7 @@ def figure(path, runs: list[Run]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     full = {r.slope_deg: r.late_speed for r in runs if r.model == "none"}
     slopes = sorted(full)

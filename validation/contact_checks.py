@@ -61,7 +61,7 @@ from dynamics.contact import (
     steady_speed,
     steady_state,
 )
-from dynamics.files import save_figure
+from lubrication.files import save_figure
 from dynamics.reduced import ReducedParams
 from dynamics.simulate import PHASE_CODES, Initial, Trajectory
 

@@ -261,7 +261,7 @@ def figure(result: dict, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     fine = np.linspace(0.0, 0.999, 300)
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
@@ -308,7 +308,7 @@ def _paragraph(result: dict) -> str:
 
 def run(outdir, quick: bool = False, folder=None):
     """The study as a validation group: (checks, figure names, paragraph); writes CSV and JSON too."""
-    from dynamics.files import write_json, write_text
+    from lubrication.files import write_json, write_text
 
     outdir = Path(outdir)
     result = study(quick=quick, folder=folder)

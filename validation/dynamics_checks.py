@@ -541,7 +541,7 @@ def _path_panel(ax, kappa, phi, star=None):
 def figure2(path, traj) -> None:
     """Panels of figure 2 with the multiple-scale laws (3.9) dashed."""
     plt = _plt()
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     s = FIG2.s
     phi_star = contact_equilibrium(s)
@@ -586,7 +586,7 @@ def figure2(path, traj) -> None:
 def figure3(path, traj) -> None:
     """Panels of figure 3 with the runaway (3.11) dashed."""
     plt = _plt()
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     rate = runaway_spin_rate(FIG3.s, FIG3.upsilon, FIG3.mu_ratio)
     t = traj.t
@@ -618,7 +618,7 @@ def figure3(path, traj) -> None:
 
 def limit_figure(path, limit: dict, level: list[dict]) -> None:
     plt = _plt()
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
     r = np.array(limit["ratios"])
@@ -645,7 +645,7 @@ def limit_figure(path, limit: dict, level: list[dict]) -> None:
 def runaway_figure(path, runs: list[dict]) -> None:
     """Acceleration per turn of the line of centres (same phase: the periodic parts cancel)."""
     plt = _plt()
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     fig, axes = plt.subplots(1, len(runs), figsize=(5.5 * len(runs), 4.2), squeeze=False)
     for ax, r in zip(axes[0], runs):
@@ -679,7 +679,7 @@ def regime_figure(path, maps: dict, kappas, phis) -> None:
     plt = _plt()
     from matplotlib.colors import ListedColormap
 
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     fig, axes = plt.subplots(1, len(maps), figsize=(4.2 * len(maps), 3.8), squeeze=False)
     cmap = ListedColormap(["0.6", "C0", "C3"])  # transient, rocking, runaway

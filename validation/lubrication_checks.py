@@ -127,7 +127,7 @@ def convergence_figure(path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from dynamics.files import save_figure
+    from lubrication.files import save_figure
 
     ns = np.unique(np.geomspace(8, 4096, 14).astype(int))
     fig, ax = plt.subplots(figsize=(6.4, 4.2))

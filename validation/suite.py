@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from dynamics.files import write_json, write_text
+from lubrication.files import write_json, write_text
 
 from . import (
     cavitation_checks,
