@@ -17,6 +17,8 @@ import time
 from importlib.metadata import entry_points
 from pathlib import Path
 
+from .sweep_cli import register as _add_sweep
+
 __all__ = ["UsageError", "main"]
 
 # A value that argparse would otherwise take for an option: -1e-6, -.5, -inf ...
@@ -260,6 +262,7 @@ def build_parser() -> argparse.ArgumentParser:
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_forces(subparsers)
     _add_run(subparsers)
+    _add_sweep(subparsers)
     for ep in entry_points(group="snail.commands"):
         ep.load()(subparsers)
     return parser
