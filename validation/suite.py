@@ -14,6 +14,7 @@ from . import (
     corrections,
     dynamics_checks,
     lubrication_checks,
+    stokes_trajectories,
 )
 
 __all__ = ["GROUPS", "run_all"]
@@ -27,6 +28,8 @@ GROUPS = {
     "Cavitation in the equations of motion: does a rupturing film stop the sinking? (section 7)":
         cavitation_trajectories,
     "Lubrication against full Stokes at finite delta/a": corrections,
+    "Lubrication against full Stokes forces along trajectories of the paper's apparatus":
+        stokes_trajectories,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
 }
 
