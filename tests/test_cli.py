@@ -75,7 +75,8 @@ def test_console_script_entry_point_and_validate_registration():
     proc = subprocess.run([sys.executable, "-m", "dynamics.cli", "--help"], capture_output=True, text=True,
                           check=False)
     assert proc.returncode == 0
-    assert "forces" in proc.stdout and "validate" in proc.stdout
+    for command in ("forces", "run", "sweep", "validate", "corrections"):
+        assert command in proc.stdout
 
 
 def test_validate_quick_writes_the_report(tmp_path, capsys):
