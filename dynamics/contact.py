@@ -148,7 +148,7 @@ import numpy as np
 from lubrication.geometry import check_finite, check_range
 
 from .integrate import Event, integrate
-from .reduced import ReducedParams, initial_state, reduced_jacobian, reduced_rhs, stretched_to_kappa
+from .reduced import ReducedParams, ReducedTrajectory, initial_state, reduced_jacobian, reduced_rhs, stretched_to_kappa
 from .validity import MAX_TURNS, runaway_event
 
 __all__ = [
@@ -235,54 +235,30 @@ class Switch(NamedTuple):
     new: str
 
 
-@dataclass(frozen=True)
-class ContactTrajectory:
-    """A hybrid solution; the columns of :class:`dynamics.reduced.ReducedTrajectory` and more.
+@dataclass(frozen=True, kw_only=True)
+class ContactTrajectory(ReducedTrajectory):
+    """A hybrid solution: the columns of :class:`dynamics.reduced.ReducedTrajectory` and more.
 
     Every switching time appears twice: the state just before the switch
     (labelled with the old phase) and just after (the new phase), so that the
-    jump of Omega_a on locking is resolved; ``t`` is non-decreasing.
+    jump of Omega_a on locking is resolved; ``t`` is non-decreasing. In contact
+    kappa = kappa* exactly; ``nfev``, ``njev``, ``steps`` are totals over all
+    phases, and ``stop_reason`` may also be ``"max_switches"``.
 
     Attributes
     ----------
-    t, kappa, one_minus_kappa, phi, omega_a, omega_b, x_b : ndarray, shape (n,)
-        As in :class:`dynamics.reduced.ReducedTrajectory`; kappa = kappa*
-        exactly in contact.
     phase : ndarray of str, shape (n,)
         "free", "sliding" or "locked".
     c_eps, c_chi : ndarray, shape (n,)
         Scaled reaction C_e = -cos(phi) (>= 0) and friction C_x of (5.2);
         zero when free.
     switches : tuple of Switch
-    status : int
-        0 reached ``t_end``; 1 stopped by an event; -1 failed or interrupted.
-    stop_reason : str
-        ``"t_end"``, ``"runaway"``, ``"max_steps"``, ``"max_switches"``,
-        ``"failed"`` or ``"interrupted"``.
-    message : str
-    nfev, njev, steps : int
-        Totals over all phases.
-    wall_time_s : float
     """
 
-    t: np.ndarray
-    kappa: np.ndarray
-    one_minus_kappa: np.ndarray
-    phi: np.ndarray
-    omega_a: np.ndarray
-    omega_b: np.ndarray
-    x_b: np.ndarray
     phase: np.ndarray
     c_eps: np.ndarray
     c_chi: np.ndarray
     switches: tuple[Switch, ...]
-    status: int
-    stop_reason: str
-    message: str
-    nfev: int
-    njev: int
-    steps: int
-    wall_time_s: float
 
 
 # -- the contact phases -------------------------------------------------------------

@@ -180,7 +180,7 @@ __all__ = [
 _X_B = {FREE: 4, SLIDING: 3, LOCKED: 2}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class RoughTrajectory(ContactTrajectory):
     """A :class:`dynamics.contact.ContactTrajectory` on rough surfaces, kappa = local kappa* in contact.
 
