@@ -47,7 +47,16 @@ from numba import njit
 
 from .forcemodels import ForceModel, evaluate
 
-__all__ = ["STATE_NAMES", "params_array", "rhs", "jacobian", "initial_state", "observables"]
+__all__ = [
+    "STATE_NAMES",
+    "force_response",
+    "gravity_response",
+    "initial_state",
+    "jacobian",
+    "observables",
+    "params_array",
+    "rhs",
+]
 
 STATE_NAMES = ("u_x", "u_z", "v_x", "v_z", "omega_a", "omega_b", "x_b")
 
@@ -79,6 +88,33 @@ def _geometry(y, delta):
     return kappa, omk, zeta, kappa * delta, big_u, ex, ez
 
 
+@njit(cache=True, nogil=True, inline="always")
+def force_response(p, eps, ex, ez, f_eps, f_chi, t_a):
+    """(x'', z'', Omega_a', Omega_b') due to a force (f_eps, f_chi) on A and a torque t_a about A.
+
+    The part of (2.1)-(2.4) linear in the forces (module docstring), without
+    gravity: the fluid's, or a contact force acting between the cylinders.
+    """
+    a, b = p[_A], p[_B]
+    cx, cz = ez, -ex  # e_chi
+    fx = f_eps * ex + f_chi * cx
+    fz = f_eps * ez + f_chi * cz
+    m_eff, m_r = p[_MEFF], p[_MRED]
+    inertia_b = (p[_MTOT] + p[_MB]) * b * b - (m_r * b) ** 2 / m_eff
+    omega_b_dot = (-t_a - eps * f_chi - (m_r * b / m_eff) * fx) / inertia_b
+    return (fx - m_r * b * omega_b_dot) / m_eff, fz / m_eff, t_a / (0.5 * p[_MA] * a * a), omega_b_dot
+
+
+@njit(cache=True, nogil=True, inline="always")
+def gravity_response(p):
+    """(x'', z'', Omega_a', Omega_b') due to gravity alone, from the same equations."""
+    b, m_eff, m_r = p[_B], p[_MEFF], p[_MRED]
+    gs, gc = p[_G] * p[_SIN], p[_G] * p[_COS]
+    inertia_b = (p[_MTOT] + p[_MB]) * b * b - (m_r * b) ** 2 / m_eff
+    omega_b_dot = (p[_MTOT] * gs * b - (m_r * b / m_eff) * m_r * gs) / inertia_b
+    return (m_r * gs - m_r * b * omega_b_dot) / m_eff, -m_r * gc / m_eff, 0.0, omega_b_dot
+
+
 @njit(cache=True, nogil=True)
 def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, cavitation):
     """dy/dt of the full model; ``p`` from :func:`params_array`, the model from a ForceModel."""
@@ -86,26 +122,19 @@ def rhs(t, y, p, code, profile, sommerfeld, rule, points_per_cell, table, cavita
     delta = b - a
     kappa, omk, zeta, eps, big_u, ex, ez = _geometry(y, delta)
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
-    cx, cz = ez, -ex  # e_chi
     eps_dot = ex * vx + ez * vz
-    chi_dot = (cx * vx + cz * vz) / eps if eps > 0.0 else 0.0
+    chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
     f_eps, f_chi, t_a = evaluate(code, profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, p[_MU],
                                  p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot, omega_b - chi_dot)
-    fx = f_eps * ex + f_chi * cx
-    fz = f_eps * ez + f_chi * cz
-    m_eff, m_r, g = p[_MEFF], p[_MRED], p[_G]
-    gs, gc = g * p[_SIN], g * p[_COS]
-    inertia_b = (p[_MTOT] + p[_MB]) * b * b - (m_r * b) ** 2 / m_eff
-    omega_b_dot = (p[_MTOT] * gs * b - t_a - eps * f_chi - (m_r * b / m_eff) * (fx + m_r * gs)) / inertia_b
+    fluid = force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
+    gravity = gravity_response(p)
     dy = np.empty(7)
     scale = 1.0 / (delta * zeta)
     stretch = big_u * big_u * eps_dot
     dy[0] = (vx + stretch * ex) * scale
     dy[1] = (vz + stretch * ez) * scale
-    dy[2] = (fx + m_r * gs - m_r * b * omega_b_dot) / m_eff
-    dy[3] = (fz - m_r * gc) / m_eff
-    dy[4] = t_a / (0.5 * p[_MA] * a * a)
-    dy[5] = omega_b_dot
+    for i in range(4):
+        dy[2 + i] = fluid[i] + gravity[i]
     dy[6] = b * omega_b
     return dy
 

@@ -6,7 +6,7 @@ from .forcemodels import force_model
 from .scene import Scene, SceneError
 from .contact import ContactParams
 from .roughness import RoughContact
-from .simulate import Trajectory, simulate_contact, simulate_full, simulate_reduced
+from .simulate import Trajectory, simulate_contact, simulate_full, simulate_full_contact, simulate_reduced
 
 __all__ = ["run_scene"]
 
@@ -21,14 +21,15 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
     Raises
     ------
     SceneError
-        For a choice this version cannot model (contact in the full equations
-        and the automatic choices).
+        For a choice this version cannot model (a varying minimum gap in the
+        full equations, cavitation without the Reynolds solver).
     """
     model = scene.model
     rough = scene.contact
-    if rough is not None and model.equations == "full":
-        raise _refuse("contact", "contact is modelled in the reduced equations only; "
-                                 "set model.equations = 'reduced' or remove the [contact] section")
+    if rough is not None and model.equations == "full" and rough.roughness_amplitude > 0:
+        raise _refuse("contact.roughness_amplitude",
+                      "a minimum gap that varies along the surfaces is modelled in the reduced equations "
+                      "only; set model.equations = 'reduced' or contact.roughness_amplitude = 0")
     cavitation = scene.cavitation
     if cavitation is not None and model.forces != "reynolds":
         raise _refuse("model.forces", "a cavitating film needs the Reynolds solver: set "
@@ -55,5 +56,10 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
                "stokes": {"delta_over_a": scene.apparatus.delta_over_a}}[model.forces]
     if cavitation is not None:
         options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
-    return simulate_full(scene.apparatus, force_model(model.forces, **options), scene.initial,
-                         scene.run.t_end, rtol=scene.run.rtol, method=method, progress=progress)
+    forces = force_model(model.forces, **options)
+    if rough is not None:
+        return simulate_full_contact(scene.apparatus, forces, ContactParams(rough.kappa_star, rough.psi),
+                                     scene.initial, scene.run.t_end, rtol=scene.run.rtol, method=method,
+                                     progress=progress)
+    return simulate_full(scene.apparatus, forces, scene.initial, scene.run.t_end, rtol=scene.run.rtol,
+                         method=method, progress=progress)

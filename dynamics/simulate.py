@@ -13,14 +13,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import contact, full, reduced, rough_contact
+from . import contact, full, full_contact, reduced, rough_contact
 from .forcemodels import ForceModel
 from .integrate import Integration, integrate
 from .roughness import RoughContact
 from .scene import Initial
-from .validity import GAP_FLOOR, MAX_REYNOLDS, MAX_TURNS, gap_floor_event, reynolds_event
+from .validity import (
+    GAP_FLOOR,
+    MAX_REYNOLDS,
+    MAX_TURNS,
+    gap_floor_event,
+    reynolds_event,
+)
 
-__all__ = ["Initial", "Trajectory", "simulate_full", "simulate_reduced", "simulate_contact"]
+__all__ = ["Initial", "Trajectory", "simulate_contact", "simulate_full", "simulate_full_contact", "simulate_reduced"]
 
 # contact phases as numbers in the trajectory table
 PHASE_CODES = {contact.FREE: 0, contact.SLIDING: 1, contact.LOCKED: 2}
@@ -94,6 +100,47 @@ def simulate_full(apparatus, force_model: ForceModel, initial: Initial, t_end: f
     columns = {"t": run.t, "t_tau": run.t / apparatus.tau, **obs}
     return _result(run, columns, equations="full", forces=force_model.name, tau=apparatus.tau,
                    dimensionless=False, method=method, groups=_groups(apparatus))
+
+
+def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.ContactParams, initial: Initial,
+                          t_end: float, *, rtol: float = 1e-8, method: str = "LSODA",
+                          max_reynolds: float = MAX_REYNOLDS, progress: str | None = None) -> Trajectory:
+    """The full model with rough contact (:mod:`dynamics.full_contact`) over ``t_end`` seconds.
+
+    ``rough`` carries kappa* and the paper's scaled friction angle psi; the
+    physical friction coefficient is tan(psi_hat) = (delta/a) tan(psi) (C2).
+    Columns as :func:`simulate_full` and, as :func:`simulate_contact`, the
+    phase, C_e = N/(m'_a g) and C_x = -(a/delta) F/(m'_a g) of (5.1)-(5.2).
+    """
+    surfaces = full_contact.FullContact.from_scaled(rough.kappa_star, rough.psi, apparatus.delta_over_a)
+    y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot,
+                            initial.phi_dot, initial.omega_a, initial.omega_b)
+    scale = apparatus.delta / apparatus.nu / apparatus.tau  # gap Reynolds number per scaled rate
+    rates = {contact.FREE: (4, 5)}
+
+    def events(phase):
+        i, j = rates.get(phase, (2, 3))
+        reynolds = reynolds_event(lambda y: scale * max(abs(y[i]) * apparatus.a, abs(y[j]) * apparatus.b),
+                                  max_reynolds, apparatus.tau)
+        return (reynolds,)
+
+    run = full_contact.simulate_full_contact(apparatus, force_model, surfaces, y0, t_end, rtol=rtol,
+                                             method=method, extra_events=events, progress=progress)
+    t = run["t"]
+    columns = {"t": t, "t_tau": run["t_tau"], **{k: run[k] for k in ("x_b", "eps", "chi", "kappa",
+                                                                     "one_minus_kappa", "phi", "omega_a",
+                                                                     "omega_b")},
+               "phase": np.array([PHASE_CODES[p] for p in run["phase"]], dtype=float),
+               "c_eps": run["c_eps"], "c_chi": run["c_chi"]}
+    status = {0: "completed", 1: "stopped"}.get(run["status"], run["stop_reason"])
+    info = {"phase_codes": PHASE_CODES, "final_phase": str(run["phase"][-1]) if t.size else "",
+            "switches": [{"t": sw.t, "from": sw.old, "to": sw.new} for sw in run["switches"]],
+            "tan_friction": surfaces.tan_psi_hat}
+    return Trajectory(columns=columns, equations="full", forces=force_model.name, status=status,
+                      reason=run["message"] if run["status"] else f"reached t_end = {t_end:.6g} s",
+                      event=run["stop_reason"] if run["status"] == 1 else "",
+                      steps=run["steps"], nfev=run["nfev"], njev=run["njev"], wall_time_s=run["wall_time_s"],
+                      tau=apparatus.tau, dimensionless=False, method=method, groups=_groups(apparatus), info=info)
 
 
 def simulate_reduced(params: reduced.ReducedParams, initial: Initial, t_end_tau: float, *,

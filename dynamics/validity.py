@@ -10,7 +10,7 @@ import math
 
 from .integrate import Event
 
-__all__ = ["GAP_FLOOR", "MAX_REYNOLDS", "MAX_TURNS", "gap_floor_event", "runaway_event", "reynolds_event"]
+__all__ = ["GAP_FLOOR", "MAX_REYNOLDS", "MAX_TURNS", "gap_floor_event", "reynolds_event", "runaway_event"]
 
 # The continuum film loses its meaning near 1 - kappa ~ 1e-7 (a molecule across the
 # paper's 3.25 mm gap); the mathematical model is followed two decades further, so
@@ -39,8 +39,11 @@ def runaway_event(turns_of_outer, max_turns: float = MAX_TURNS) -> Event:
                  lambda t: f"runaway: the outer cylinder turned {max_turns:g} times by t = {t:.6g}")
 
 
-def reynolds_event(reynolds_number, max_reynolds: float = MAX_REYNOLDS) -> Event:
-    """Stop when the gap Reynolds number ``reynolds_number(y)`` reaches ``max_reynolds``."""
+def reynolds_event(reynolds_number, max_reynolds: float = MAX_REYNOLDS, seconds_per_unit: float = 1.0) -> Event:
+    """Stop when the gap Reynolds number ``reynolds_number(y)`` reaches ``max_reynolds``.
+
+    ``seconds_per_unit`` converts the integrator's time to seconds for the message.
+    """
     return Event("reynolds", lambda t, y: max_reynolds - reynolds_number(y), -1.0,
-                 lambda t: f"the gap Reynolds number reached {max_reynolds:g} at t = {t:.6g} s: "
+                 lambda t: f"the gap Reynolds number reached {max_reynolds:g} at t = {t * seconds_per_unit:.6g} s: "
                            "quasi-steady Stokes flow, the model's assumption, no longer holds")

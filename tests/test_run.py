@@ -130,10 +130,22 @@ def test_a_contact_scene_settles_into_steady_rolling(tmp_path, capsys, psi, regi
     assert header.endswith("phase,c_eps,c_chi")
 
 
-def test_contact_in_the_full_model_is_refused(tmp_path, capsys):
+def test_contact_in_the_full_model_runs_from_the_default_scene(tmp_path, capsys):
+    """The steel apparatus with asperities at kappa* = 0.98 touches, then rolls in sliding contact."""
     assert main(["run", "-o", str(tmp_path / "out"), "--set", "contact.kappa_star=0.98",
-                 "--set", "contact.psi=0.1"]) == 2
-    assert "reduced equations only" in capsys.readouterr().err
+                 "--set", "contact.psi=0.1", "--t-end", "3", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["model"] == "full" and summary["status"] == "completed"
+    assert summary["switches"][0]["from"] == "free" and summary["final"]["kappa"] == 0.98
+    header = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()[0]
+    assert header.endswith("phase,c_eps,c_chi")
+
+
+def test_a_varying_minimum_gap_in_the_full_model_is_refused(tmp_path, capsys):
+    assert main(["run", "-o", str(tmp_path / "out"), "--set", "contact.kappa_star=0.98",
+                 "--set", "contact.roughness_amplitude=0.3", "--set", "contact.roughness_correlation=0.01"]) == 2
+    assert "contact.roughness_amplitude" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
 
 
 def test_a_cavitating_film_runs_through_the_scene(tmp_path, capsys):
