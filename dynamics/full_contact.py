@@ -359,7 +359,8 @@ def _transition(sc: _Scaled, phase, sigma, reason, end, phi) -> PhaseStart:
         eps = sc.contact.kappa_star * sc.ap.delta
         y_si[2] = ((sc.ap.a + eps) * y_si[3] - eps * y_si[1]) / sc.ap.a  # slip = 0 exactly
         return _enter_contact(sc, y_si, -sigma)
-    return _enter_contact(sc, y_si, -math.copysign(1.0, sc.rates(y_si, True, 0.0)[4]))
+    # the friction bound is reached: slide from zero slip, the way the friction no longer prevents
+    return PhaseStart(SLIDING, end.copy(), -math.copysign(1.0, sc.rates(y_si, True, 0.0)[4]))
 
 
 def _columns(sc: _Scaled, phase, sigma, y, t, phi_start) -> dict:
