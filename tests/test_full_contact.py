@@ -1,5 +1,6 @@
 """Rough contact in the full model: the constraint forces' power, the impact law, and the limit to section 5."""
 
+import itertools
 import math
 
 import numpy as np
@@ -182,5 +183,5 @@ def test_stick_slip_while_rocking_switches_cleanly():
     traj = run(ap, 0.98, 0.13, 300.0)
     phases = [sw["to"] for sw in traj.info["switches"]]
     assert traj.status == "completed" and len(phases) >= 8
-    assert all(p != q for p, q in zip(phases, phases[1:]))  # a switch always changes the phase
+    assert all(p != q for p, q in itertools.pairwise(phases))  # a switch always changes the phase
     assert traj.steps < 1.5 * run(ap, 0.98, 0.5, 300.0).steps

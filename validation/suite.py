@@ -13,6 +13,7 @@ from . import (
     contact_checks,
     corrections,
     dynamics_checks,
+    full_contact_checks,
     lubrication_checks,
     stokes_trajectories,
 )
@@ -32,6 +33,7 @@ GROUPS = {
     "Lubrication against full Stokes forces along trajectories of the paper's apparatus":
         stokes_trajectories,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
+    "Rough contact in the full model: the limit to section 5 and the paper's apparatus": full_contact_checks,
 }
 
 
