@@ -95,7 +95,6 @@ from .integrate import Event
 __all__ = [
     "FullContact",
     "contact_rates",
-    "contact_state",
     "impact",
     "simulate_full_contact",
     "slip",
@@ -186,14 +185,6 @@ def slip(apparatus, kappa_star: float, y) -> float:
     """Slip speed eps* (chi' - Omega_b) + a (Omega_a - Omega_b) (m/s) at the contact point, SI state."""
     eps = kappa_star * apparatus.delta
     return eps * (y[1] - y[3]) + apparatus.a * (y[2] - y[3])
-
-
-def contact_state(apparatus, y_free, phi: float) -> np.ndarray:
-    """(chi, chi', Omega_a, Omega_b, X_b) SI from a free state at kappa = kappa*; chi = phi - alpha."""
-    chi = phi - apparatus.alpha
-    eps = math.hypot(y_free[0], y_free[1]) / math.hypot(1.0, math.hypot(y_free[0], y_free[1])) * apparatus.delta
-    chi_dot = (math.cos(chi) * y_free[2] - math.sin(chi) * y_free[3]) / eps
-    return np.array([chi, chi_dot, y_free[4], y_free[5], y_free[6]])
 
 
 def _free_state(apparatus, contact: FullContact, y) -> np.ndarray:
