@@ -12,7 +12,7 @@ from .forcemodels import FORCE_MODELS, ForceModel, force_model
 from .reduced import ReducedParams
 from .run import run_scene
 from .scene import Initial, Scene, SceneError, load_scene, parse_scene
-from .simulate import Trajectory, simulate_full, simulate_reduced
+from .simulate import Trajectory, simulate_contact, simulate_full, simulate_full_contact, simulate_reduced
 
 __all__ = [
     "ALUMINIUM",
@@ -31,6 +31,8 @@ __all__ = [
     "parse_scene",
     "preset",
     "run_scene",
+    "simulate_contact",
     "simulate_full",
+    "simulate_full_contact",
     "simulate_reduced",
 ]
