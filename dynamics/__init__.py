@@ -12,7 +12,13 @@ from .forcemodels import FORCE_MODELS, ForceModel, force_model
 from .reduced import ReducedParams
 from .run import run_scene
 from .scene import Initial, Scene, SceneError, load_scene, parse_scene
-from .simulate import Trajectory, simulate_contact, simulate_full, simulate_full_contact, simulate_reduced
+from .simulate import (
+    Trajectory,
+    simulate_contact,
+    simulate_full,
+    simulate_full_contact,
+    simulate_reduced,
+)
 
 __all__ = [
     "ALUMINIUM",
