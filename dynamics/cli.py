@@ -69,9 +69,11 @@ def _add_forces(subparsers) -> None:
         "forces", help="fluid force and torque on the inner cylinder",
         description="Fluid force f_eps, f_chi (N) and torque T_a (N m) on the inner cylinder, "
                     "whole length, for one instant. SI units throughout.")
-    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "stokes", "all"],
+    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "stokes", "all", "auto"],
                    help="force model (default closed-form); all: every model and their differences "
-                        "(stokes needs the fem extra)")
+                        "(stokes needs the fem extra); auto: the cheapest whose measured error meets --tolerance")
+    p.add_argument("--tolerance", type=_number, default=1e-2,
+                   help="auto: largest acceptable relative error of the forces, in (0, 1), default 1e-2")
     p.add_argument("--a", type=_number, required=True, help="inner radius (m)")
     p.add_argument("--b", type=_number, required=True, help="outer radius (m)")
     p.add_argument("--kappa", type=_number, required=True, help="eccentricity eps/(b - a), in [0, 1)")
@@ -144,6 +146,8 @@ def _run_forces(args) -> int:
                                    if args.cavitation != "none" else {})},
                    "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
                               if v is not None}}
+        if args.model == "auto":
+            return _run_auto_forces(args, annulus, motion, fluid)
         models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (
             ["stokes"] if _has_fem() else [])
         results = []
@@ -174,6 +178,26 @@ def _run_forces(args) -> int:
         print(json.dumps(out, indent=2))
     else:
         _print_forces_table(annulus, [row for _, row in results])
+    return 0
+
+
+def _run_auto_forces(args, annulus, motion, fluid) -> int:
+    """``--model auto``: the choice of :func:`dynamics.auto.choose_forces` at this kappa, evaluated."""
+    from .auto import choose_forces
+    from .forcemodels import force_model
+
+    choice = choose_forces(args.tolerance, annulus.delta_over_a, annulus.kappa)
+    options = dict(choice.options, **({"delta_over_a": annulus.delta_over_a} if choice.model == "stokes" else {}))
+    model = force_model(choice.model, **options)
+    f, seconds = _timed(lambda: model.forces(annulus, motion, fluid), warm_up=True)
+    out = {"model": "auto", "chosen_model": choice.model, "options": choice.options, "reason": choice.reason,
+           "tolerance": args.tolerance, "measured_error": choice.error,
+           "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds}
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        _print_forces_table(annulus, [dict(out, model=choice.model)])
+        print(f"chosen: {choice.model}: {choice.reason}.")
     return 0
 
 
@@ -214,9 +238,10 @@ def _add_run(subparsers) -> None:
     p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded steel scene)")
     p.add_argument("-o", "--output", default="snail-output", help="output folder (default snail-output)")
     p.add_argument("--t-end", help="run length: seconds, or a string with units such as '2 min'")
-    p.add_argument("--model", choices=["full", "reduced"], help="equations of motion, overriding the scene")
-    p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes"],
-                   help="force model, overriding the scene (stokes: tabulated, built once per delta/a)")
+    p.add_argument("--model", choices=["full", "reduced", "auto"], help="equations of motion, overriding the scene")
+    p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes", "auto"],
+                   help="force model, overriding the scene (stokes: tabulated, built once per delta/a; "
+                        "auto: the cheapest meeting model.tolerance)")
     p.add_argument("--method", default="LSODA", choices=["LSODA", "BDF", "Radau"],
                    help="scipy integrator (default LSODA)")
     p.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",

@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
-from .forcemodels import force_model
-from .scene import Scene, SceneError
+from dataclasses import replace
+
+from .auto import resolve_model
 from .contact import ContactParams
+from .forcemodels import force_model
 from .roughness import RoughContact
-from .simulate import Trajectory, simulate_contact, simulate_full, simulate_full_contact, simulate_reduced
+from .scene import Scene, SceneError
+from .simulate import (
+    Trajectory,
+    simulate_contact,
+    simulate_full,
+    simulate_full_contact,
+    simulate_reduced,
+)
 
 __all__ = ["run_scene"]
 
@@ -35,8 +44,11 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
         raise _refuse("model.forces", "a cavitating film needs the Reynolds solver: set "
                                       "model.forces = 'reynolds' or remove the [cavitation] section")
     if model.equations == "auto" or model.forces == "auto":
-        raise _refuse("model", "the automatic choice needs the speed-accuracy study; name the "
-                               "equations (full, reduced) and forces (closed-form, reynolds)")
+        # choose from the stored speed-accuracy study, run the concrete scene, record why
+        resolved, choices = resolve_model(scene)
+        trajectory = run_scene(replace(scene, model=resolved), method=method, progress=progress)
+        trajectory.info["model_choice"] = choices
+        return trajectory
     if model.equations == "reduced" and rough is not None:
         surfaces = ContactParams(rough.kappa_star, rough.psi)
         if rough.roughness_amplitude > 0:

@@ -40,9 +40,11 @@ becomes depends on ``model.equations``:
   apparatus in the distinguished limit, or the scene is refused with the
   reason. From then on it is a physical scene, and its groups are derived
   from that apparatus (they equal the given ones to rounding).
-* ``"auto"``: ``"full"`` when ``groups.delta_over_a > 0``, that is, when a
-  finite gap is asked for. Otherwise ``"reduced"``: delta_over_a = 0, its
-  default, is the distinguished limit delta/a -> 0.
+* ``"auto"``: ``"reduced"`` when ``groups.delta_over_a = 0`` (its default:
+  the distinguished limit delta/a -> 0 itself, which only (2.11) describes).
+  For a finite gap the apparatus is built as for ``"full"``, and the run
+  chooses between the equations from the speed-accuracy study
+  (:mod:`dynamics.auto`); either way the output is then in SI units.
 
 :func:`resolved_toml` writes the resolved scene back as TOML with SI numbers.
 A physical scene is written as its apparatus, whether it came from a preset
@@ -149,7 +151,7 @@ class Model:
 
     equations: str = "full"  # "full" (2.1)-(2.4), "reduced" (2.11) or "auto"
     forces: str = "closed-form"  # "closed-form" (2.5)-(2.7), "reynolds", "stokes" or "auto"
-    tolerance: float = 0.01  # relative force error that forces = "auto" may accept, in (0, 1)
+    tolerance: float = 0.01  # relative error "auto" equations and forces may accept (measured), in (0, 1)
     n: int = 16  # Reynolds: cells around the gap, >= 8
     grid: str = "sommerfeld"  # Reynolds: uniform in the Sommerfeld angle or in theta ("uniform")
 
@@ -561,9 +563,8 @@ def _groups(raw: Mapping[str, Any], model: Model) -> tuple[Apparatus | None, Gro
         raise _missing(missing, "a [groups] scene gives s, upsilon and mu")
     values["mu_ratio"] = values.pop("mu")
     groups = Groups(**values)
-    if model.equations == "auto":
-        equations = "full" if groups.delta_over_a > 0 else "reduced"
-        model = dataclasses.replace(model, equations=equations)
+    if model.equations == "auto" and groups.delta_over_a == 0:
+        model = dataclasses.replace(model, equations="reduced")
     if model.equations == "reduced":
         return None, groups, model
     try:

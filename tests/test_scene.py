@@ -207,7 +207,7 @@ def test_groups_for_the_reduced_model_are_dimensionless():
 def test_groups_for_the_full_model_build_an_apparatus(equations):
     groups = {"s": 0.3, "upsilon": 2.0, "mu": 2.0, "delta_over_a": 0.05}
     scene = parse_scene(edited(GROUPS, groups=groups, model={"equations": equations}))
-    assert scene.model.equations == "full" and not scene.dimensionless
+    assert scene.model.equations == equations and not scene.dimensionless  # auto: chosen by the run
     assert isinstance(scene.apparatus, Apparatus)
     given = Groups(s=0.3, upsilon=2.0, mu_ratio=2.0, delta_over_a=0.05)
     for name in ("s", "upsilon", "mu_ratio", "delta_over_a"):
