@@ -15,6 +15,7 @@ from . import (
     dynamics_checks,
     full_contact_checks,
     lubrication_checks,
+    model_choice_checks,
     stokes_trajectories,
 )
 from .paper_claims import claims_table
@@ -34,6 +35,7 @@ GROUPS = {
         stokes_trajectories,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
     "Rough contact in the full model: the limit to section 5 and the paper's apparatus": full_contact_checks,
+    "The automatic model choice against fresh reference solves": model_choice_checks,
 }
 
 

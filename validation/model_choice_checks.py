@@ -1,0 +1,134 @@
+r"""The automatic model choice against computations made now.
+
+:mod:`dynamics.auto` chooses from the stored speed-versus-accuracy study
+(``dynamics/data/model_choice.json``, written by ``benchmarks/accuracy.py``).
+These checks do not trust the stored numbers: each choice is recomputed at
+run time against the reference it claims to meet.
+
+* Different gaps, different choices. At one tolerance, 5e-2, the thin gap
+  delta/a = 0.01 gets the closed forms (2.5)-(2.7), whose error there is
+  O(delta/a) (the largest term, f_chi per W_b, is about 2.5 delta/a), and the
+  reduced equations (2.11); the paper's apparatus, delta/a = 0.406
+  (a = 0.8 cm, b = 1.125 cm), gets the Stokes resistance table and the full
+  equations (2.1)-(2.4).
+* The chosen force model meets its tolerance. Its five resistance
+  coefficients are compared with a finite-element Stokes solve on the default
+  mesh refined by 1.5 (own error below 1e-6, benchmarks/results/stokes.md) at
+  kappas that are neither study points nor table nodes; error convention of
+  the study (T_a per W_b against |T_a per W_a|).
+* The chosen equations meet theirs. The reduced equations and the full
+  equations with Stokes-table forces are both run from rest at kappa = 0.5,
+  phi = 0.5 for 200 tau (the distinguished-limit apparatus with the steel
+  apparatus' groups); at delta/a = 0.01 the relative error of X_b and of the
+  gap 1 - kappa at the end must be within the tolerance, at 0.406 (where the full equations
+  were chosen) it must exceed it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from dynamics import forcemodels
+from dynamics.apparatus import Apparatus, preset
+from dynamics.auto import choose_equations, choose_forces
+from dynamics.scene import Initial
+from dynamics.simulate import simulate_full, simulate_reduced
+from lubrication.forces import Resistance, resistance
+from lubrication.geometry import Annulus, Fluid, Motion
+from lubrication.stokes import default_mesh
+
+from .checks import Check, absolute, at_most
+
+__all__ = ["run"]
+
+THIN, APPARATUS = 0.01, 0.40625
+# One scene tolerance that separates the gaps: the closed forms were measured at 2.5e-2 (delta/a = 0.01)
+# and 0.58 (0.406), the reduced equations at 3.0e-2 and 0.65.
+FORCE_TOLERANCE = EQUATIONS_TOLERANCE = 5e-2
+KAPPA_BAND = 0.99  # the study's near-contact band, as a trajectory needs
+FLUID = Fluid(nu=2.0e-4, rho=960.0)
+T_END_TAU = 200.0
+
+
+def _row_error(got: Resistance, truth: Resistance) -> float:
+    g, t = got.as_tuple(), truth.as_tuple()
+    return max([abs(g[i] - t[i]) / abs(t[i]) for i in range(4)] + [abs(g[4] - t[4]) / abs(t[2])])
+
+
+def _chosen_resistance(choice, annulus: Annulus) -> Resistance:
+    options = dict(choice.options, **({"delta_over_a": annulus.delta_over_a} if choice.model == "stokes" else {}))
+    model = forcemodels.force_model(choice.model, **options)
+    unit = [model.forces(annulus, Motion(**{k: 1.0}), FLUID) for k in ("eps_dot", "omega_a", "omega_b")]
+    return Resistance(unit[0].f_eps, unit[1].f_chi, unit[1].T_a, unit[2].f_chi, unit[2].T_a)
+
+
+def force_errors(tolerance: float, delta: float, kappas) -> tuple:
+    """The choice at (tolerance, delta/a) and its error against a fresh fine Stokes solve at each kappa."""
+    choice = choose_forces(tolerance, delta, KAPPA_BAND)
+    n_around, n_across = default_mesh(delta)
+    errors = {}
+    for kappa in kappas:
+        annulus = Annulus.from_kappa(0.008, 0.008 * (1.0 + delta), kappa, length=0.1035)
+        truth = resistance(annulus, FLUID, "stokes", n_around=round(1.5 * n_around),
+                           n_across=round(1.5 * n_across))
+        errors[kappa] = _row_error(_chosen_resistance(choice, annulus), truth)
+    return choice, errors
+
+
+def equations_error(delta: float) -> float:
+    """Relative error of (X_b, 1 - kappa) after T_END_TAU of the reduced equations against the full
+    equations with Stokes-table forces, at ``delta`` with the steel apparatus' groups."""
+    steel = preset("steel")
+    app = Apparatus.from_groups(steel.s, steel.upsilon, steel.mu_ratio, delta)
+    release = Initial(kappa=0.5, phi=0.5)
+    reduced = simulate_reduced(app.reduced_params, release, T_END_TAU, apparatus=app, rtol=1e-10)
+    full = simulate_full(app, forcemodels.stokes(delta), release, T_END_TAU * app.tau, rtol=1e-10)
+    r, f = reduced.columns, full.columns
+    return max(abs(r["x_b"][-1] - f["x_b"][-1]) / abs(f["x_b"][-1]),
+               abs(r["one_minus_kappa"][-1] - f["one_minus_kappa"][-1]) / f["one_minus_kappa"][-1])
+
+
+def run(outdir, quick: bool = False) -> tuple[list[Check], list[str], str]:
+    """All checks of the automatic choice; returns (checks, figure file names, a markdown paragraph)."""
+    Path(outdir).mkdir(parents=True, exist_ok=True)
+    kappas = (0.3, 0.95) if quick else (0.3, 0.7, 0.95, 0.985)
+    thin, thin_errors = force_errors(FORCE_TOLERANCE, THIN, kappas)
+    wide, wide_errors = force_errors(FORCE_TOLERANCE, APPARATUS, kappas)
+    strict, strict_errors = force_errors(1e-4, THIN, kappas)
+    eq_thin = choose_equations(EQUATIONS_TOLERANCE, THIN)
+    eq_wide = choose_equations(EQUATIONS_TOLERANCE, APPARATUS)
+    reduced_error = equations_error(THIN)
+    reduced_wide_error = equations_error(APPARATUS)
+    checks = [
+        absolute(f"auto forces differ at delta/a {THIN:g} ({thin.model}) and {APPARATUS:g} ({wide.model}), "
+                 f"tolerance {FORCE_TOLERANCE:g}", float(thin.model != wide.model), 1.0, 0.0),
+        absolute(f"auto equations differ at delta/a {THIN:g} ({eq_thin.model}) and {APPARATUS:g} "
+                 f"({eq_wide.model}), tolerance {EQUATIONS_TOLERANCE:g}",
+                 float(eq_thin.model != eq_wide.model), 1.0, 0.0),
+    ]
+    for choice, errors, tol, delta in ((thin, thin_errors, FORCE_TOLERANCE, THIN),
+                                       (wide, wide_errors, FORCE_TOLERANCE, APPARATUS),
+                                       (strict, strict_errors, 1e-4, THIN)):
+        for kappa, err in errors.items():
+            checks.append(at_most(f"auto {choice.model} forces against Stokes, delta/a {delta:g}, kappa {kappa:g}, "
+                                  f"tolerance {tol:g}", err, tol,
+                                  note=f"stored error {choice.error:.2e}"))
+    checks.append(at_most(f"auto {eq_thin.model} equations against full + Stokes, delta/a {THIN:g}, "
+                          f"tolerance {EQUATIONS_TOLERANCE:g}", reduced_error, EQUATIONS_TOLERANCE,
+                          note=f"stored error {eq_thin.error:.2e}"))
+    checks.append(Check(f"reduced equations miss tolerance {EQUATIONS_TOLERANCE:g} at delta/a {APPARATUS:g}, "
+                        f"where auto chose {eq_wide.model}", reduced_wide_error, EQUATIONS_TOLERANCE, 0.0,
+                        eq_wide.model == "full" and reduced_wide_error > EQUATIONS_TOLERANCE, "lower-bound",
+                        "the full equations were needed"))
+    paragraph = (
+        "The automatic choice (`dynamics.auto`) reads the stored speed-versus-accuracy study "
+        "(`benchmarks/accuracy.py`); here each choice is recomputed against a fresh finite-element Stokes "
+        "solve (default mesh refined by 1.5) or a fresh trajectory. "
+        f"At a force tolerance of {FORCE_TOLERANCE:g} it picks {thin.model} at delta/a = {THIN:g} "
+        f"(largest error now {max(thin_errors.values()):.2e}, stored {thin.error:.2e}) and {wide.model} at "
+        f"{APPARATUS:g} (now {max(wide_errors.values()):.2e}); at 1e-4 it picks {strict.model} at {THIN:g} "
+        f"(now {max(strict_errors.values()):.2e}). At an equations tolerance of {EQUATIONS_TOLERANCE:g} it "
+        f"picks the {eq_thin.model} equations at {THIN:g} (trajectory error now {reduced_error:.2e}, stored "
+        f"{eq_thin.error:.2e}) and the {eq_wide.model} equations at {APPARATUS:g}, where the reduced "
+        f"equations' error is now {reduced_wide_error:.2e}.")
+    return checks, [], paragraph
