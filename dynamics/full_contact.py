@@ -79,22 +79,19 @@ scalar absolute tolerance serves all phases.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 from scipy.optimize import fsolve
 
-from lubrication.geometry import check_range
-
 from . import full
-from .contact import FREE, LOCKED, SLIDING, PhaseStart, run_phases
+from .contact import FREE, LOCKED, SLIDING, ContactParams, PhaseStart, run_phases
 from .forcemodels import ForceModel, evaluate
 from .integrate import Event
 
 __all__ = [
-    "FullContact",
     "contact_rates",
+    "friction_coefficient",
     "impact",
     "simulate_full_contact",
     "slip",
@@ -102,35 +99,9 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
-class FullContact:
-    """Rough contact for the full model.
-
-    Parameters
-    ----------
-    kappa_star : float
-        kappa at which the asperities touch, 1 - sigma/delta, in (0, 1).
-    tan_psi_hat : float
-        Physical friction coefficient tan(psi_hat) >= 0; the paper's scaled
-        tan(psi) is (a/delta) tan(psi_hat) (C2), see :meth:`from_scaled`.
-    """
-
-    kappa_star: float
-    tan_psi_hat: float
-
-    def __post_init__(self):
-        check_range("kappa_star", self.kappa_star, 0.0, 1.0, low_open=True)
-        check_range("tan_psi_hat", self.tan_psi_hat, 0.0, math.inf)
-
-    @classmethod
-    def from_scaled(cls, kappa_star: float, psi: float, delta_over_a: float) -> FullContact:
-        """From the paper's scaled friction angle psi: tan(psi_hat) = (delta/a) tan(psi)."""
-        psi = check_range("psi", psi, 0.0, 0.5 * math.pi, unit="rad")
-        return cls(kappa_star, delta_over_a * math.tan(psi))
-
-    @property
-    def one_minus_kappa_star(self) -> float:
-        return 1.0 - self.kappa_star
+def friction_coefficient(apparatus, contact: ContactParams) -> float:
+    """The physical friction coefficient tan(psi_hat) = (delta/a) tan(psi) of the paper's scaled psi (C2)."""
+    return apparatus.delta_over_a * contact.tan_psi
 
 
 # -- contact forces and accelerations (jitted) -------------------------------------
@@ -187,7 +158,7 @@ def slip(apparatus, kappa_star: float, y) -> float:
     return eps * (y[1] - y[3]) + apparatus.a * (y[2] - y[3])
 
 
-def _free_state(apparatus, contact: FullContact, y) -> np.ndarray:
+def _free_state(apparatus, contact: ContactParams, y) -> np.ndarray:
     """The free state (u, r', Omega_a, Omega_b, X_b) of a contact state (SI), eps' = 0."""
     chi = y[0]
     zeta = math.sqrt(contact.one_minus_kappa_star * (1.0 + contact.kappa_star))
@@ -197,7 +168,7 @@ def _free_state(apparatus, contact: FullContact, y) -> np.ndarray:
                      y[2], y[3], y[4]])
 
 
-def impact(apparatus, contact: FullContact, chi: float, velocity, omega_a: float, omega_b: float):
+def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: float, omega_b: float):
     """Velocities just after a plastic impact at eps = eps* (module docstring).
 
     Parameters
@@ -224,7 +195,7 @@ def impact(apparatus, contact: FullContact, chi: float, velocity, omega_a: float
     radial = np.array([ex, ez, 0.0, 0.0])
     sliding = np.array([*e_chi, apparatus.a, -(apparatus.a + eps)])
     approach, slip0 = radial @ v, sliding @ v
-    mu_f = contact.tan_psi_hat
+    mu_f = friction_coefficient(apparatus, contact)
     p_n, p_f = np.linalg.solve([[radial @ normal, radial @ friction], [sliding @ normal, sliding @ friction]],
                                [-approach, -slip0])
     if abs(p_f) > mu_f * p_n:  # the stick impulse lies outside the friction cone
@@ -241,7 +212,7 @@ def impact(apparatus, contact: FullContact, chi: float, velocity, omega_a: float
 class _Scaled:
     """The full model's phases in scaled variables: time in tau, states over their typical sizes."""
 
-    def __init__(self, apparatus, force_model: ForceModel, contact: FullContact):
+    def __init__(self, apparatus, force_model: ForceModel, contact: ContactParams):
         self.ap, self.contact = apparatus, contact
         self.p = full.params_array(apparatus)
         self.model = full.model_arguments(force_model)
@@ -250,10 +221,11 @@ class _Scaled:
         tau = self.tau
         self.contact_scale = np.array([1.0, 1.0 / tau, 1.0 / tau, 1.0 / tau, apparatus.b])
         self.contact_args = (contact.kappa_star, contact.one_minus_kappa_star)
+        self.tan_psi_hat = friction_coefficient(apparatus, contact)
         self.u_star = contact.kappa_star / math.sqrt(contact.one_minus_kappa_star * (1.0 + contact.kappa_star))
 
     def rates(self, y_si, locked: bool, sigma: float) -> np.ndarray:
-        return contact_rates(y_si, self.p, *self.contact_args, locked, sigma, self.contact.tan_psi_hat,
+        return contact_rates(y_si, self.p, *self.contact_args, locked, sigma, self.tan_psi_hat,
                              *self.model)
 
     def free_fun(self, t, y):
@@ -299,7 +271,7 @@ def _enter_contact(sc: _Scaled, y_si, sigma_hint: float = 0.0) -> PhaseStart:
     lock = sc.rates(y_si, True, 0.0)
     n_lock, f_lock = lock[3], lock[4]
     stuck = abs(s) <= 1e-12 * sc.ap.b / sc.tau
-    if stuck and n_lock > 0.0 and abs(f_lock) < sc.contact.tan_psi_hat * n_lock:
+    if stuck and n_lock > 0.0 and abs(f_lock) < sc.tan_psi_hat * n_lock:
         return PhaseStart(LOCKED, scaled)
     sigma = math.copysign(1.0, s) if not stuck else (sigma_hint or -math.copysign(1.0, f_lock))
     if sc.rates(y_si, False, sigma)[3] <= 0.0 and n_lock <= 0.0:
@@ -323,7 +295,7 @@ def _setup(sc: _Scaled, phase: str, sigma: float, extra_events) -> tuple:
         return sc.free_fun, sc.free_jac, (touch, *extra_events(FREE))
     locked = phase == LOCKED
     fun = sc.contact_fun(locked, sigma)
-    mu_f = sc.contact.tan_psi_hat
+    mu_f = sc.tan_psi_hat
 
     def reaction(y):
         return sc.rates(y * sc.contact_scale, locked, sigma)
@@ -373,7 +345,7 @@ def _columns(sc: _Scaled, phase, sigma, y, t, phi_start) -> dict:
             "c_eps": forces[:, 0] / weight, "c_chi": -forces[:, 1] / (ap.delta_over_a * weight)}
 
 
-def simulate_full_contact(apparatus, force_model: ForceModel, contact: FullContact, y0_free: np.ndarray,
+def simulate_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, y0_free: np.ndarray,
                           t_end: float, *, rtol: float = 1e-8, method: str = "LSODA", extra_events=None,
                           max_steps: int = 2_000_000, max_switches: int = 10_000,
                           progress: str | None = None) -> dict:
@@ -408,7 +380,7 @@ def simulate_full_contact(apparatus, force_model: ForceModel, contact: FullConta
     return fields
 
 
-def steady_full_contact(apparatus, force_model: ForceModel, contact: FullContact, locked: bool,
+def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, locked: bool,
                         guess) -> np.ndarray:
     """A steadily rolling contact state (chi, Omega_a, Omega_b) of the full model, chi' = 0.
 
@@ -419,6 +391,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: FullContact
     p = full.params_array(apparatus)
     model = full.model_arguments(force_model)
     args = (contact.kappa_star, contact.one_minus_kappa_star)
+    tan_psi_hat = friction_coefficient(apparatus, contact)
     tau, a = apparatus.tau, apparatus.a
     arm = a + contact.kappa_star * apparatus.delta  # distance from B to the contact point
     guess = np.asarray(guess, dtype=float)
@@ -427,7 +400,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: FullContact
     if locked:
         def residual(x):
             y = np.array([x[0], 0.0, arm * x[1] / (a * tau), x[1] / tau])
-            r = contact_rates(y, p, *args, True, 0.0, contact.tan_psi_hat, *model)
+            r = contact_rates(y, p, *args, True, 0.0, tan_psi_hat, *model)
             return [r[0] * tau * tau, r[2] * tau * tau]
 
         chi, omega_b = fsolve(residual, [guess[0], guess[2] * tau], xtol=1e-12)
@@ -435,7 +408,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: FullContact
 
     def residual(x):
         y = np.array([x[0], 0.0, x[1] / tau, x[2] / tau])
-        r = contact_rates(y, p, *args, False, sigma, contact.tan_psi_hat, *model)
+        r = contact_rates(y, p, *args, False, sigma, tan_psi_hat, *model)
         return [r[0] * tau * tau, r[1] * tau * tau, r[2] * tau * tau]
 
     chi, omega_a, omega_b = fsolve(residual, guess * np.array([1.0, tau, tau]), xtol=1e-12)

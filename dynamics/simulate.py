@@ -112,7 +112,6 @@ def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.Con
     Columns as :func:`simulate_full` and, as :func:`simulate_contact`, the
     phase, C_e = N/(m'_a g) and C_x = -(a/delta) F/(m'_a g) of (5.1)-(5.2).
     """
-    surfaces = full_contact.FullContact.from_scaled(rough.kappa_star, rough.psi, apparatus.delta_over_a)
     y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot,
                             initial.phi_dot, initial.omega_a, initial.omega_b)
     scale = apparatus.delta / apparatus.nu / apparatus.tau  # gap Reynolds number per scaled rate
@@ -124,7 +123,7 @@ def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.Con
                                   max_reynolds, apparatus.tau)
         return (reynolds,)
 
-    run = full_contact.simulate_full_contact(apparatus, force_model, surfaces, y0, t_end, rtol=rtol,
+    run = full_contact.simulate_full_contact(apparatus, force_model, rough, y0, t_end, rtol=rtol,
                                              method=method, extra_events=events, progress=progress)
     t = run["t"]
     columns = {"t": t, "t_tau": run["t_tau"], **{k: run[k] for k in ("x_b", "eps", "chi", "kappa",
@@ -135,7 +134,7 @@ def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.Con
     status = {0: "completed", 1: "stopped"}.get(run["status"], run["stop_reason"])
     info = {"phase_codes": PHASE_CODES, "final_phase": str(run["phase"][-1]) if t.size else "",
             "switches": [{"t": sw.t, "from": sw.old, "to": sw.new} for sw in run["switches"]],
-            "tan_friction": surfaces.tan_psi_hat}
+            "tan_friction": full_contact.friction_coefficient(apparatus, rough)}
     return Trajectory(columns=columns, equations="full", forces=force_model.name, status=status,
                       reason=run["message"] if run["status"] else f"reached t_end = {t_end:.6g} s",
                       event=run["stop_reason"] if run["status"] == 1 else "",

@@ -8,6 +8,7 @@ import pytest
 
 from dynamics import contact, full, full_contact
 from dynamics.apparatus import Apparatus
+from dynamics.contact import ContactParams
 from dynamics.forcemodels import closed_form
 from dynamics.scene import Initial
 from dynamics.simulate import simulate_full_contact
@@ -37,7 +38,7 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
     the friction would break the identity at O(1).
     """
     ap = device()
-    surfaces = full_contact.FullContact.from_scaled(0.98, 0.3, ap.delta_over_a)
+    surfaces = ContactParams(0.98, 0.3)
     p = full.params_array(ap)
     rng = np.random.default_rng(3)
     eps = surfaces.kappa_star * ap.delta
@@ -49,7 +50,7 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
         y = np.array([chi, chi_dot, omega_a, omega_b, 0.0])
         sigma = math.copysign(1.0, full_contact.slip(ap, surfaces.kappa_star, y))
         rates = full_contact.contact_rates(y, p, surfaces.kappa_star, surfaces.one_minus_kappa_star, locked,
-                                           sigma, surfaces.tan_psi_hat, *MODEL)
+                                           sigma, full_contact.friction_coefficient(ap, surfaces), *MODEL)
         e_eps, e_chi = np.array([math.sin(chi), math.cos(chi)]), np.array([math.cos(chi), -math.sin(chi)])
         r, r_dot = eps * e_eps, eps * chi_dot * e_chi
         r_ddot = eps * (rates[0] * e_chi - chi_dot**2 * e_eps)
@@ -63,7 +64,7 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
             assert abs(friction_power) < 1e-9 * scale
         else:
             assert rates[3] > 0.0 and friction_power < 0.0
-            assert rates[4] == pytest.approx(-sigma * surfaces.tan_psi_hat * rates[3])
+            assert rates[4] == pytest.approx(-sigma * full_contact.friction_coefficient(ap, surfaces) * rates[3])
 
 
 def impact_momentum(ap, chi, v, omega_a, omega_b, eps):
@@ -81,7 +82,8 @@ def kinetic(ap, v, omega_a, omega_b):
 @pytest.mark.parametrize("psi, sticks", [(1.2, True), (0.3, False)])
 def test_plastic_impact_conserves_angular_momentum_and_loses_energy(psi, sticks):
     ap = device()
-    surfaces = full_contact.FullContact.from_scaled(0.98, psi, ap.delta_over_a)
+    surfaces = ContactParams(0.98, psi)
+    mu = full_contact.friction_coefficient(ap, surfaces)
     eps = surfaces.kappa_star * ap.delta
     chi = 0.3 + math.pi
     e_eps, e_chi = np.array([math.sin(chi), math.cos(chi)]), np.array([math.cos(chi), -math.sin(chi)])
@@ -99,9 +101,9 @@ def test_plastic_impact_conserves_angular_momentum_and_loses_energy(psi, sticks)
     assert kinetic(ap, v1, wa1, wb1) < kinetic(ap, v, omega_a, omega_b)
     slip_after = e_chi @ v1 + ap.a * wa1 - (ap.a + eps) * wb1
     if sticks:
-        assert abs(slip_after) < 1e-12 * ap.b / ap.tau and abs(p_f) <= surfaces.tan_psi_hat * p_n
+        assert abs(slip_after) < 1e-12 * ap.b / ap.tau and abs(p_f) <= mu * p_n
     else:  # slides through the impact: friction at its bound and against the slip, which keeps its sign
-        assert abs(p_f) == pytest.approx(surfaces.tan_psi_hat * p_n, rel=1e-12)
+        assert abs(p_f) == pytest.approx(mu * p_n, rel=1e-12)
         assert p_f < 0.0 < slip_after
 
 
@@ -112,7 +114,7 @@ def test_steady_rolling_approaches_section_5_at_first_order_in_delta_over_a(psi)
     ratios, errors = [0.01, 0.003, 0.001], []
     for d in ratios:
         ap = device(d)
-        surfaces = full_contact.FullContact.from_scaled(0.98, psi, d)
+        surfaces = ContactParams(0.98, psi)
         chi, omega_a, omega_b = full_contact.steady_full_contact(
             ap, FORCES, surfaces, reduced.phase == contact.LOCKED,
             [reduced.phi - ap.alpha, reduced.omega_a / ap.tau, reduced.omega_b / ap.tau])
@@ -124,7 +126,7 @@ def test_steady_rolling_approaches_section_5_at_first_order_in_delta_over_a(psi)
 
 
 def run(ap, kappa_star, psi, t_end_tau, kappa0=0.5):
-    return simulate_full_contact(ap, FORCES, contact.ContactParams(kappa_star, psi),
+    return simulate_full_contact(ap, FORCES, ContactParams(kappa_star, psi),
                                  Initial(kappa=kappa0, phi=0.3), t_end_tau * ap.tau, rtol=1e-9)
 
 
@@ -137,7 +139,7 @@ def test_a_release_settles_on_the_full_models_own_steady_state(psi, phase):
     assert traj.status == "completed" and traj.info["final_phase"] == phase
     reduced = contact.steady_state(0.25, 0.98, psi)
     steady = full_contact.steady_full_contact(
-        ap, FORCES, full_contact.FullContact.from_scaled(0.98, psi, ap.delta_over_a), phase == contact.LOCKED,
+        ap, FORCES, ContactParams(0.98, psi), phase == contact.LOCKED,
         [reduced.phi - ap.alpha, reduced.omega_a / ap.tau, reduced.omega_b / ap.tau])
     assert c["chi"][-1] == pytest.approx(steady[0], abs=1e-6)
     assert c["omega_a"][-1] * ap.tau == pytest.approx(steady[1] * ap.tau, rel=1e-6)
@@ -170,7 +172,7 @@ def test_extremes_of_contact_run_cleanly(kappa_star, psi, phase):
 
 def test_a_release_at_the_contact_gap_starts_in_contact():
     ap = device()
-    traj = simulate_full_contact(ap, FORCES, contact.ContactParams(0.98, 0.5), Initial(kappa=0.98, phi=3.5),
+    traj = simulate_full_contact(ap, FORCES, ContactParams(0.98, 0.5), Initial(kappa=0.98, phi=3.5),
                                  50.0 * ap.tau)
     assert traj.columns["phase"][0] > 0 and np.all(traj.columns["kappa"] == 0.98)
 

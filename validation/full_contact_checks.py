@@ -36,7 +36,7 @@ import numpy as np
 from dynamics.apparatus import Apparatus, preset
 from dynamics.contact import LOCKED, ContactParams, steady_state
 from dynamics.forcemodels import closed_form, force_model
-from dynamics.full_contact import FullContact, steady_full_contact
+from dynamics.full_contact import steady_full_contact
 from dynamics.scene import Initial
 from dynamics.simulate import Trajectory, simulate_full_contact
 from lubrication.files import save_figure
@@ -67,7 +67,7 @@ def device(delta_over_a: float) -> Apparatus:
     return Apparatus.from_groups(s=S, upsilon=1.0, mu_ratio=MU_RATIO, delta_over_a=delta_over_a)
 
 
-def _steady(apparatus, forces, surfaces: FullContact, reduced) -> np.ndarray:
+def _steady(apparatus, forces, surfaces: ContactParams, reduced) -> np.ndarray:
     """The full model's fixed point, from the reduced one as the first guess."""
     return steady_full_contact(apparatus, forces, surfaces, reduced.phase == LOCKED,
                                [reduced.phi - apparatus.alpha, reduced.omega_a / apparatus.tau,
@@ -80,7 +80,7 @@ def limit_errors(psi: float) -> list[float]:
     errors = []
     for ratio in RATIOS:
         ap = device(ratio)
-        chi, omega_a, omega_b = _steady(ap, closed_form(), FullContact.from_scaled(KAPPA_STAR, psi, ratio), reduced)
+        chi, omega_a, omega_b = _steady(ap, closed_form(), ContactParams(KAPPA_STAR, psi), reduced)
         errors.append(max(abs(chi + ap.alpha - reduced.phi), abs(omega_a * ap.tau / reduced.omega_a - 1.0),
                           abs(omega_b * ap.tau / reduced.omega_b - 1.0)))
     return errors
@@ -96,7 +96,7 @@ def _release_error(trajectory: Trajectory, psi: float) -> float:
     """max |rate - fixed point| at the end, over the rate scale 3 zeta* s; chi error in rad."""
     ap = device(trajectory.groups["delta_over_a"])
     reduced = steady_state(S, KAPPA_STAR, psi)
-    chi, omega_a, omega_b = _steady(ap, closed_form(), FullContact.from_scaled(KAPPA_STAR, psi, ap.delta_over_a),
+    chi, omega_a, omega_b = _steady(ap, closed_form(), ContactParams(KAPPA_STAR, psi),
                                     reduced)
     c = trajectory.columns
     scale = 3.0 * ContactParams(KAPPA_STAR, psi).zeta_star * S / ap.tau
@@ -118,7 +118,7 @@ def apparatus_speeds(quick: bool) -> dict:
         run = simulate_full_contact(ap, forces, rough, Initial(kappa=kappa_star, phi=math.pi), 3000.0 * ap.tau,
                                     rtol=1e-9)
         c = run.columns  # the fixed point of the phase the run ends in, from its final state
-        fixed = steady_full_contact(ap, forces, FullContact.from_scaled(kappa_star, PSI_EXPERIMENT, ap.delta_over_a),
+        fixed = steady_full_contact(ap, forces, ContactParams(kappa_star, PSI_EXPERIMENT),
                                     run.info["final_phase"] == LOCKED,
                                     [c["chi"][-1], c["omega_a"][-1], c["omega_b"][-1]])
         out[name] = {"v": ap.b * float(c["omega_b"][-1]), "v_fixed": ap.b * fixed[2],
