@@ -220,3 +220,15 @@ def test_contact_limits_shape():
     limits = contact_limits(0.5, np.full(5, 7.0))
     np.testing.assert_allclose(limits, [1.5**1.5, 1.5**0.5, 1.5**0.5, 1.5**2.5, 7.0])
     assert N_NODES >= 2
+
+
+
+def test_gaps_equal_to_rounding_share_one_table():
+    """The apparatus' (b - a)/a = 0.40624999999999994 is keyed, and so cached, as 0.40625; 0.41 is not."""
+    from lubrication.stokes_tables import _settings
+
+    def key(delta_over_a):
+        return _settings(delta_over_a, 0.99, 16, None, None, 0.5)["delta_over_a"]
+
+    assert key((0.01125 - 0.008) / 0.008) == key(0.40625) == 0.40625
+    assert key(0.41) != key(0.40625)
