@@ -192,6 +192,10 @@ def run(outdir, quick: bool = False):
             row = speeds[name]
             checks.append(relative(f"full contact, steel apparatus ({name} forces): speed vs its fixed point",
                                    row["v"], row["v_fixed"], STEADY_TOLERANCE, row["phase"]))
+    if "stokes" in speeds:  # Stokes resists more than (2.5)-(2.7) at this gap (1 + c delta/a, c > 0): slower
+        checks.append(at_most("full contact, steel apparatus: speed with Stokes forces over (6.1)",
+                              speeds["stokes"]["v"] / speeds["v_reduced"], 1.0,
+                              f"(6.1) with the exact fixed point: {1e3 * speeds['v_reduced']:.3g} mm/s"))
 
     figures = []
     if not quick:

@@ -371,6 +371,18 @@ def _cavitation_verdict(f: Found) -> tuple[bool, str]:
                    "rough-contact rolling and cannot be compared with the ratio to the decelerating full film.")
 
 
+def _speed_law(f: Found) -> str:
+    return (f"Full model (2.1)-(2.4) with rough contact and Stokes-table forces, steel apparatus in 500 cSt oil "
+            f"at 2.4 degrees, sigma = 50 microns: steady speed {f['stokes'].measured:.3f} times that of (6.1) "
+            f"({f['stokes'].note}).")
+
+
+def _speed_law_verdict(f: Found) -> tuple[bool, str]:
+    return False, (f"at delta/a = 0.41 the finite-gap resistance slows the steady rolling to "
+                   f"{f['stokes'].measured:.0%} of the leading-order law, so a roughness inferred from measured "
+                   "speeds with (6.1)-(6.3) comes out too small.")
+
+
 # -- the rows -----------------------------------------------------------------------------
 
 CLAIMS: tuple[Claim, ...] = (
@@ -483,6 +495,13 @@ CLAIMS: tuple[Claim, ...] = (
         optional={"limit": "full against reduced: log-log slope*",
                   "gap": "both rock: smallest (1-kappa) at the end, Stokes / lubrication*",
                   "speed": "both rock to 1-kappa=1e-3: largest mean speed ratio Stokes / lubrication*"}),
+    Claim(
+        "Speed law (6.1) at the apparatus' gap",
+        "Section 6: the steady speed V = V* sin(alpha) zeta* Max(1/2, ...) (6.1)-(6.2), leading order in "
+        "delta/a, is applied to the steel apparatus (delta/a = 0.41), and the minimum gap sigma ~ 50 microns "
+        "(6.3) and the sandpaper roughness of Table 3 are inferred from measured speeds with it.",
+        {"stokes": "full contact, steel apparatus: speed with Stokes forces over (6.1)*"},
+        _speed_law, _speed_law_verdict),
     Claim(
         "Cavitation",
         "Section 7: simple models that truncate the pressure where it falls too low (the journal-bearing device) "
