@@ -159,13 +159,13 @@ def _table_resistance(table: StokesTable, annulus: Annulus) -> Resistance:
 
 
 @njit(cache=False, nogil=True)
-def _evaluate_loop(calls, code, profile, sommerfeld, rule, points_per_cell, table, cavitation,
+def _evaluate_loop(calls, profile, sommerfeld, rule, points_per_cell, table, cavitation,
                    a, b, mu, length, kappa, omk):
     """``calls`` evaluations of the jitted force model, with inputs that change from call to call."""
     total = 0.0
     for i in range(calls):
         s = 1.0 + 1e-9 * i
-        f_eps, f_chi, t_a = forcemodels.evaluate(code, profile, sommerfeld, rule, points_per_cell, table,
+        f_eps, f_chi, t_a = forcemodels.evaluate(profile, sommerfeld, rule, points_per_cell, table,
                                                  cavitation, a, b, mu, length, kappa, omk,
                                                  1e-6 * s, 0.9 * s, 0.4 * s)
         total += f_eps + f_chi + t_a
@@ -173,7 +173,7 @@ def _evaluate_loop(calls, code, profile, sommerfeld, rule, points_per_cell, tabl
 
 
 def _jit_batch(model: forcemodels.ForceModel, annulus: Annulus):
-    args = (model.code, model.profile, model.sommerfeld, model.rule, model.points_per_cell, model.table,
+    args = (model.profile, model.sommerfeld, model.rule, model.points_per_cell, model.table,
             model.cavitation, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa,
             annulus.one_minus_kappa)
 
@@ -221,7 +221,7 @@ def _eom_model(c: dict, tables: dict) -> forcemodels.ForceModel | None:
         return forcemodels.reynolds(**c["options"])
     if c["model"] == "stokes-table":
         table, _ = tables[c["options"]["n_nodes"]]
-        return forcemodels.ForceModel("stokes", forcemodels.STOKES_TABLE, table=tuple(table.arrays))
+        return forcemodels.ForceModel("stokes", table=tuple(table.arrays))
     return None
 
 

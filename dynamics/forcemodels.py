@@ -1,8 +1,11 @@
 """The force-model interface the equations of motion call, with one adapter per lubrication model.
 
-A :class:`ForceModel` is plain data (a model code and the arrays its kernel
-needs), so that the right-hand side of the equations of motion can be jitted
-once and call :func:`evaluate` for any model without Python in the loop.
+A :class:`ForceModel` is plain data (the arrays its kernel needs, None for
+what it does not use), so that the right-hand side of the equations of motion
+is jitted and calls :func:`evaluate` for any model without Python in the loop.
+The model is told apart by which data are None: numba prunes the branches of
+the other models when it compiles, so a run compiles (and caches) only the
+kernel it uses, not every kernel of the project.
 """
 
 from __future__ import annotations
@@ -17,15 +20,11 @@ from lubrication.cavitation import CAVITATION_MODELS
 from lubrication.closed_form import lubrication_forces
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
-from lubrication.stokes_tables import RATIO_NAMES, StokesTable, table_forces
+from lubrication.stokes_tables import StokesTable, table_forces
 
-__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "reynolds", "stokes", "force_model", "evaluate"]
+__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "evaluate", "force_model", "reynolds", "stokes"]
 
-CLOSED_FORM, REYNOLDS, STOKES_TABLE, CAVITATING = 0, 1, 2, 3
 FORCE_MODELS = ("closed-form", "reynolds", "stokes")
-
-_NO_ARRAY = np.empty(0)
-_NO_TABLE = (np.empty(0), np.empty((len(RATIO_NAMES), 0)), np.empty(len(RATIO_NAMES)))
 
 
 @dataclass(frozen=True)
@@ -35,39 +34,36 @@ class ForceModel:
     Attributes
     ----------
     name : str
-        "closed-form" or "reynolds".
-    code : int
-        Model code used by :func:`evaluate`.
+        "closed-form", "reynolds", "reynolds/<cavitation model>" or "stokes".
     profile : int
         Gap profile of the Reynolds kernel (thin or eccentric).
     sommerfeld : bool
         Reynolds grid uniform in the Sommerfeld angle (True) or in theta.
-    rule : tuple of ndarray
-        cos, sin, 1 - cos, 1 + cos of psi and the weights at the Gauss points.
+    rule : tuple of ndarray or None
+        cos, sin, 1 - cos, 1 + cos of psi and the weights at the Gauss points
+        of the Reynolds grid; None for the closed forms and Stokes.
     points_per_cell : int
         Gauss points per cell of the Reynolds grid.
-    table : tuple of ndarray
+    table : tuple of ndarray or None
         (zeta_nodes, node_ratios, contact) of a Stokes resistance table.
-    cavitation : tuple
+    cavitation : tuple or None
         (model code in CAVITATION_MODELS, p_cav, p_ref) of a cavitating Reynolds film.
     options : dict
         The options the model was built with, for the record.
     """
 
     name: str
-    code: int
     profile: int = _kernels.THIN
     sommerfeld: bool = True
-    rule: tuple = (_NO_ARRAY,) * 5
+    rule: tuple | None = None
     points_per_cell: int = 1
-    table: tuple = _NO_TABLE
-    cavitation: tuple = (0, 0.0, 0.0)
+    table: tuple | None = None
+    cavitation: tuple | None = None
     options: dict = field(default_factory=dict)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
-        f = evaluate(self.code, self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.table,
-                     self.cavitation,
+        f = evaluate(self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.table, self.cavitation,
                      annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
                      annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
@@ -75,7 +71,7 @@ class ForceModel:
 
 def closed_form() -> ForceModel:
     """Lubrication closed forms (2.5)-(2.7)."""
-    return ForceModel("closed-form", CLOSED_FORM)
+    return ForceModel("closed-form")
 
 
 def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1,
@@ -92,15 +88,14 @@ def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", point
         msg = f"profile must be one of {', '.join(PROFILES)}, got {profile!r}"
         raise ValueError(msg)
     rule, _ = _psi_rule(n, points_per_cell)
-    code = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
+    gap = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
     options = {"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell}
     if cavitation == "none":
-        return ForceModel("reynolds", REYNOLDS, code, grid == "sommerfeld", rule, points_per_cell,
-                          options=options)
+        return ForceModel("reynolds", gap, grid == "sommerfeld", rule, points_per_cell, options=options)
     if not p_cav <= p_ref:
         msg = f"p_cav must not exceed p_ref = {p_ref:g} Pa, got {p_cav:g} Pa"
         raise ValueError(msg)
-    return ForceModel(f"reynolds/{cavitation}", CAVITATING, code, grid == "sommerfeld", rule, points_per_cell,
+    return ForceModel(f"reynolds/{cavitation}", gap, grid == "sommerfeld", rule, points_per_cell,
                       cavitation=(CAVITATION_MODELS.index(cavitation), float(p_cav), float(p_ref)),
                       options={**options, "cavitation": cavitation, "p_cav": p_cav, "p_ref": p_ref})
 
@@ -112,7 +107,7 @@ def stokes(delta_over_a: float, **table_options) -> ForceModel:
     and cached; ``table_options`` go to :meth:`lubrication.stokes_tables.StokesTable.load`.
     """
     table = StokesTable.load(delta_over_a, **table_options)
-    return ForceModel("stokes", STOKES_TABLE, table=tuple(table.arrays),
+    return ForceModel("stokes", table=tuple(table.arrays),
                       options={"delta_over_a": delta_over_a, **table_options})
 
 
@@ -129,19 +124,24 @@ def force_model(name: str, **options) -> ForceModel:
 
 
 @njit(cache=True, nogil=True)
-def evaluate(code, profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, mu, length,
+def evaluate(profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, mu, length,
              kappa, omk, eps_dot, w_a, w_b):
-    """f_eps, f_chi (N) and T_a (N m) for the model ``code``; see :class:`ForceModel`."""
-    if code == CLOSED_FORM:
-        return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
-    if code == STOKES_TABLE:
+    """f_eps, f_chi (N) and T_a (N m) of the model whose data are given; see :class:`ForceModel`.
+
+    A Stokes table if ``table`` is given, else the closed forms if ``rule`` is
+    None, else the Reynolds film, cavitating if ``cavitation`` is given. The
+    tests are on None, which numba resolves when it compiles.
+    """
+    if table is not None:
         zeta_nodes, node_ratios, contact = table
         return table_forces(zeta_nodes, node_ratios, contact, a, b - a, mu, length, kappa, omk,
                             eps_dot, w_a, w_b)
+    if rule is None:
+        return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
-    if code == CAVITATING:
+    if cavitation is not None:
         n = spsi.size // points_per_cell
         model, p_cav, p_ref = cavitation
         f_eps, f_chi, t_a, _ = _cavitation_kernels.cavitating_film_forces(
