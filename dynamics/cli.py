@@ -204,9 +204,8 @@ def _run_auto_forces(args, annulus, motion, fluid) -> int:
 def _write_flow(outdir, annulus, motion, fluid, mesh_options) -> None:
     import matplotlib.pyplot as plt
 
-    from lubrication.stokes import plot_flow, stokes_flow, write_vtu
-
     from lubrication.files import save_figure
+    from lubrication.stokes import plot_flow, stokes_flow, write_vtu
 
     flow = stokes_flow(annulus, motion, fluid, **mesh_options)
     outdir = Path(outdir)

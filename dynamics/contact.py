@@ -148,7 +148,14 @@ import numpy as np
 from lubrication.geometry import check_finite, check_range
 
 from .integrate import Event, integrate
-from .reduced import ReducedParams, ReducedTrajectory, initial_state, reduced_jacobian, reduced_rhs, stretched_to_kappa
+from .reduced import (
+    ReducedParams,
+    ReducedTrajectory,
+    initial_state,
+    reduced_jacobian,
+    reduced_rhs,
+    stretched_to_kappa,
+)
 from .validity import MAX_TURNS, runaway_event
 
 __all__ = [

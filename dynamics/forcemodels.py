@@ -13,9 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
 from lubrication import _cavitation_kernels, _kernels
+from lubrication._jit import jit
 from lubrication.cavitation import CAVITATION_MODELS
 from lubrication.closed_form import lubrication_forces
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
@@ -123,7 +123,7 @@ def force_model(name: str, **options) -> ForceModel:
     raise ValueError(msg)
 
 
-@njit(cache=True, nogil=True)
+@jit
 def evaluate(profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, mu, length,
              kappa, omk, eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m) of the model whose data are given; see :class:`ForceModel`.

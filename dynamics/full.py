@@ -43,7 +43,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from lubrication._jit import jit
 
 from .forcemodels import ForceModel, evaluate
 
@@ -71,7 +72,7 @@ def params_array(apparatus) -> np.ndarray:
                      ap.g, math.sin(ap.alpha), math.cos(ap.alpha)])
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def _geometry(y, delta):
     """kappa, 1 - kappa, zeta, eps, |u| and the unit vector e_eps from the state."""
     ux, uz, vx, vz = y[0], y[1], y[2], y[3]
@@ -88,7 +89,7 @@ def _geometry(y, delta):
     return kappa, omk, zeta, kappa * delta, big_u, ex, ez
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def force_response(p, eps, ex, ez, f_eps, f_chi, t_a):
     """(x'', z'', Omega_a', Omega_b') due to a force (f_eps, f_chi) on A and a torque t_a about A.
 
@@ -105,7 +106,7 @@ def force_response(p, eps, ex, ez, f_eps, f_chi, t_a):
     return (fx - m_r * b * omega_b_dot) / m_eff, fz / m_eff, t_a / (0.5 * p[_MA] * a * a), omega_b_dot
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def gravity_response(p):
     """(x'', z'', Omega_a', Omega_b') due to gravity alone, from the same equations."""
     b, m_eff, m_r = p[_B], p[_MEFF], p[_MRED]
@@ -115,7 +116,7 @@ def gravity_response(p):
     return (m_r * gs - m_r * b * omega_b_dot) / m_eff, -m_r * gc / m_eff, 0.0, omega_b_dot
 
 
-@njit(cache=True, nogil=True)
+@jit
 def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation):
     """dy/dt of the full model; ``p`` from :func:`params_array`, the model from a ForceModel."""
     a, b = p[_A], p[_B]
@@ -139,7 +140,7 @@ def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation):
     return dy
 
 
-@njit(cache=True, nogil=True)
+@jit
 def jacobian(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation, typical):
     """d(rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 

@@ -81,8 +81,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 from scipy.optimize import fsolve
+
+from lubrication._jit import jit
 
 from . import full
 from .contact import FREE, LOCKED, SLIDING, ContactParams, PhaseStart, run_phases
@@ -106,7 +107,7 @@ def friction_coefficient(apparatus, contact: ContactParams) -> float:
 
 # -- contact forces and accelerations (jitted) -------------------------------------
 
-@njit(cache=True, nogil=True)
+@jit
 def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat,
                   profile, sommerfeld, rule, points_per_cell, table, cavitation):
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from lubrication.files import save_figure, write_json, write_text
+
 from .regime import classify
 from .simulate import Trajectory
 

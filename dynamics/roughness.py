@@ -83,8 +83,8 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit
 
+from lubrication._jit import jit
 from lubrication.geometry import check_range
 
 from .contact import ContactParams
@@ -122,7 +122,7 @@ def soft_floor(x, floor: float, knee: float):
             np.where(below, (1.0 + 2.0 * v) * blend * blend, 1.0))
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _soft_floor_kernel(x, floor, knee):
     """Scalar twin of :func:`soft_floor`."""
     if x >= knee:
@@ -132,7 +132,7 @@ def _soft_floor_kernel(x, floor, knee):
     return floor + (knee - floor) * blend, (1.0 + 2.0 * v) * blend * blend
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _heights_kernel(theta, cos_coefficients, sin_coefficients):
     """Scalar twin of :meth:`SurfaceHeights.__call__`: f(theta) and f'(theta)."""
     theta = theta % (2.0 * math.pi)
@@ -145,7 +145,7 @@ def _heights_kernel(theta, cos_coefficients, sin_coefficients):
     return value, slope
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _local_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
     """Scalar twin of :meth:`RoughContact.local`: (kappa*, 1 - kappa*, d kappa*/d theta_a, .../d theta_b)."""
     f_a, df_a = _heights_kernel(theta_a, cos_a, sin_a)

@@ -68,6 +68,7 @@ def _draw_map(sweep, csv_path) -> None:
     import matplotlib.pyplot as plt
 
     from lubrication.files import save_figure
+
     from .sweep import plot_regime_map, read_rows
 
     rows = read_rows(csv_path)

@@ -8,10 +8,25 @@ y_0 = 0 at the feed node, and the cavitation level y_cav = (p_cav - p_ref)/(12 m
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from ._kernels import (ECCENTRIC, H1, H2, H3, N_INTEGRALS, OH2, OH3, OQH3, QH2, QH3, SH2, SH3, SQH3,
-                       cell_integrals, full_film)
+from ._jit import jit
+from ._kernels import (
+    ECCENTRIC,
+    H1,
+    H2,
+    H3,
+    N_INTEGRALS,
+    OH2,
+    OH3,
+    OQH3,
+    QH2,
+    QH3,
+    SH2,
+    SH3,
+    SQH3,
+    cell_integrals,
+    full_film,
+)
 
 # Cavitation models, in the order of lubrication.cavitation.CAVITATION_MODELS.
 NONE, HALF_SOMMERFELD, SWIFT_STIEBER, JFO = 0, 1, 2, 3
@@ -29,7 +44,7 @@ MIN_CONTINUATION_STEP = 1.0 / 4096
 COARSEST_LEVEL = 16
 
 
-@njit(cache=True, nogil=True)
+@jit
 def tridiagonal_solve(lower, diag, upper, rhs):
     """Solve a tridiagonal system in place by elimination with partial pivoting (as LAPACK gtsv).
 
@@ -68,14 +83,14 @@ def tridiagonal_solve(lower, diag, upper, rhs):
     return True
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _cell_coefficients(integrals, half_u):
     """Conductance g = 1/G, Couette flux k = (U/2) A/G and squeeze level <Q> = B/G of each cell."""
     g = 1.0 / integrals[:, H3]
     return g, half_u * integrals[:, H2] * g, integrals[:, QH3] * g
 
 
-@njit(cache=True, nogil=True)
+@jit
 def balance(integrals, half_u, y, film, upwind_left, r_out):
     """Mass residual of every node: content flux out of its dual cell minus flux in, plus F a h_t.
 
@@ -94,7 +109,7 @@ def balance(integrals, half_u, y, film, upwind_left, r_out):
         r_out[j] = out - inflow + film[j] * (qm[j] - qm[jm])
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _film_integrals(integrals, half_u, u_a, u_b, y, weight, film):
     """oint phi' sin, oint phi' omega and the torque sum of a film described cell by cell.
 
@@ -118,7 +133,7 @@ def _film_integrals(integrals, half_u, u_a, u_b, y, weight, film):
     return i_sin, i_chi, (u_b - u_a) * i_couette - 6.0 * i_press
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _active_set(integrals, half_u, model, y_cav, state, y, film, max_iterations):
     """The primal-dual active-set (semismooth Newton) iteration for Swift-Stieber and JFO.
 
@@ -249,7 +264,7 @@ def _active_set(integrals, half_u, model, y_cav, state, y, film, max_iterations)
     return -1
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _coarsen(integrals):
     """Integrals over pairs of cells: the same exact scheme on the grid of the even nodes."""
     coarse = np.zeros(((integrals.shape[0] + 1) // 2, integrals.shape[1]))
@@ -258,7 +273,7 @@ def _coarsen(integrals):
     return coarse
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _settle(integrals, u_a, u_b, model, y_cav, state, y, film, max_iterations):
     """:func:`_active_set`, falling back on a continuation in the squeeze if it does not settle.
 
@@ -298,7 +313,7 @@ def _settle(integrals, u_a, u_b, model, y_cav, state, y, film, max_iterations):
     return total
 
 
-@njit(cache=True, nogil=True)
+@jit
 def _multilevel_active_set(integrals, u_a, u_b, model, y_cav, y, film, max_iterations):
     """The active-set iteration on a hierarchy of grids, each level started from the coarser one.
 
@@ -340,7 +355,7 @@ def _multilevel_active_set(integrals, u_a, u_b, model, y_cav, y, film, max_itera
     return total
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def _add_unknown(lower, diag, upper, j, c_prev, c_self, c_next, n):
     """Column of unknown j (row index j - 1) in rows j-1, j, j+1 of the system of nodes 1..N-1."""
     diag[j - 1] += c_self
@@ -350,7 +365,7 @@ def _add_unknown(lower, diag, upper, j, c_prev, c_self, c_next, n):
         lower[j - 1] += c_next
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def _add_known(rhs, j, jm, jp, c_prev, c_self, c_next):
     """Move a known contribution of node j to the right-hand sides of its rows (node 0 has none)."""
     if j > 0:
@@ -361,7 +376,7 @@ def _add_known(rhs, j, jm, jp, c_prev, c_self, c_next):
         rhs[jp - 1] -= c_next
 
 
-@njit(cache=True, nogil=True)
+@jit
 def cavitating_film(integrals, u_a, u_b, model, y_cav, max_iterations, y_out, film_out, r_out):
     """The film under a cavitation model; return oint phi' sin, oint phi' omega, the torque sum, passes.
 
@@ -427,7 +442,7 @@ def cavitating_film(integrals, u_a, u_b, model, y_cav, max_iterations, y_out, fi
     return i_sin, i_chi, i_torque, passes
 
 
-@njit(cache=True, nogil=True)
+@jit
 def cavitating_film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
                            cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, cos_c, sin_c,
                            model, p_cav, p_ref, p_out, film_out, r_out):

@@ -56,13 +56,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from ._jit import jit
 
 # Gap profiles known to the kernel; TABULATED takes h and Q from arrays.
 THIN, ECCENTRIC, TABULATED = 0, 1, 2
 
 
-@njit(cache=True, nogil=True, inline="always")
+@jit(inline="always")
 def eccentric_gap(a, b, eps, omk, s, v, eps_dot):
     """Exact gap between the circles along the ray from A, and its squeeze flux.
 
@@ -85,7 +86,7 @@ H1, H2, H3, QH3, QH2, SH2, SH3, SQH3, OH2, OH3, OQH3 = range(11)
 N_INTEGRALS = 11
 
 
-@njit(cache=True, nogil=True)
+@jit
 def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
                    cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, out):
     """Add to ``out[j]`` the integrals over cell j listed by the column constants above.
@@ -178,7 +179,7 @@ def cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g,
         row[OQH3] += omq3
 
 
-@njit(cache=True, nogil=True)
+@jit
 def full_film(integrals, u_a, u_b, phi_out):
     """The full-film solution from the cell integrals; return oint phi' sin, oint phi' omega, torque sum.
 
@@ -215,7 +216,7 @@ def full_film(integrals, u_a, u_b, phi_out):
     return i_sin, i_chi, i_torque
 
 
-@njit(cache=True, nogil=True)
+@jit
 def film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
                 cpsi, spsi, vpsi, ppsi, wpsi, m, h_tab, q_tab, cos_c, sin_c, phi_out):
     """f_eps, f_chi (N) and T_a (N m) of the full film over the length.

@@ -18,14 +18,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ._jit import jit
 from .geometry import Annulus, Fluid, FluidForces, Motion
 
 __all__ = ["closed_form_forces", "lubrication_forces"]
 
 
-@njit(cache=True, nogil=True)
+@jit
 def lubrication_forces(a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
     """(2.5)-(2.7) for the whole length; ``omk`` is 1 - kappa, kept for precision near contact.
 

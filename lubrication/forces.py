@@ -6,7 +6,7 @@ from dataclasses import astuple, dataclass
 
 from .cavitation import cavitating_forces
 from .closed_form import closed_form_forces
-from .geometry import Annulus, Fluid, FluidForces, Motion
+from .geometry import RESISTANCE_NAMES, Annulus, Fluid, FluidForces, Motion
 from .reynolds import reynolds_forces
 
 __all__ = ["MODELS", "Resistance", "fluid_forces", "resistance"]
@@ -62,7 +62,7 @@ class Resistance:
     f_chi_per_w_b: float
     t_a_per_w_b: float
 
-    NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
+    NAMES = RESISTANCE_NAMES
 
     def as_tuple(self) -> tuple[float, ...]:
         return astuple(self)

@@ -15,7 +15,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "check_finite", "check_range"]
+__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "RESISTANCE_NAMES", "check_finite",
+           "check_range"]
+
+#: The five resistance coefficients of a full film, in the order every table and array of
+#: the project uses: f_eps per eps', then f_chi and T_a per W_a = Omega_a - chi', then
+#: f_chi and T_a per W_b = Omega_b - chi' (see :class:`lubrication.forces.Resistance`).
+RESISTANCE_NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
 
 # Forces grow as (1 - kappa)^(-3/2); below this gap they would overflow a double.
 MIN_ONE_MINUS_KAPPA = 1e-150

@@ -258,8 +258,14 @@ class _Discretisation:
     def __init__(self, b: float, eps: float, n_around: int, n_across: int,
                  clustering: float):
         import scipy.sparse as sp
-        from skfem import (Basis, BilinearForm, ElementQuad1, ElementQuad2,
-                           ElementVector, asm)
+        from skfem import (
+            Basis,
+            BilinearForm,
+            ElementQuad1,
+            ElementQuad2,
+            ElementVector,
+            asm,
+        )
         from skfem.helpers import ddot, div, sym_grad
 
         from ._stokes_mesh import build_mesh
@@ -494,7 +500,7 @@ def stokes_flow(annulus: Annulus, motion: Motion, fluid: Fluid, *,
     -------
     StokesFlow
     """
-    from skfem import Basis, ElementQuad1, ElementVector, ElementQuad2
+    from skfem import Basis, ElementQuad1, ElementQuad2, ElementVector
 
     a, b, kappa, n_around, n_across, clustering = _check_geometry(
         annulus.a, annulus.b, annulus.kappa, n_around, n_across, clustering)

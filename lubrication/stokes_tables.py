@@ -61,20 +61,19 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from numba import njit
 
+from ._jit import jit
 from .closed_form import lubrication_forces
 from .files import write_bytes
-from .geometry import Annulus, Fluid, FluidForces, Motion, check_range
+from .geometry import RESISTANCE_NAMES, Annulus, Fluid, FluidForces, Motion, check_range
 
 __all__ = ["RATIO_NAMES", "KAPPA_MAX", "N_NODES", "TABLE_VERSION", "StokesTable", "cache_folder",
            "contact_limits", "table_forces", "table_ratios"]
 
 logger = logging.getLogger(__name__)
 
-#: Row order of the tabulated ratios, that of ``lubrication.forces.Resistance.NAMES``
-#: (not imported from there, so that the force models may import this module).
-RATIO_NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
+#: Row order of the tabulated ratios.
+RATIO_NAMES = RESISTANCE_NAMES
 
 #: Exponents p of the contact limits (b/a)^p of the ratios, in RATIO_NAMES order;
 #: NaN for r_t_b, whose limit is not fixed by the local analysis (module docstring).
@@ -118,7 +117,7 @@ def lobatto_zeta(zeta_min: float, n: int) -> np.ndarray:
     return zeta_min + 0.5 * (1.0 - zeta_min) * (1.0 - np.cos(np.pi * np.arange(n) / (n - 1)))
 
 
-@njit(cache=True, nogil=True)
+@jit
 def table_ratios(zeta_nodes, node_ratios, contact, zeta):
     """The five ratios at ``zeta`` = sqrt(1 - kappa^2), RATIO_NAMES order.
 
@@ -164,7 +163,7 @@ def table_ratios(zeta_nodes, node_ratios, contact, zeta):
     return r0 / den, r1 / den, r2 / den, r3 / den, r4 / den
 
 
-@njit(cache=True, nogil=True)
+@jit
 def table_forces(zeta_nodes, node_ratios, contact, a, delta, mu, length, kappa, omk,
                  eps_dot, w_a, w_b):
     """Stokes force and torque from a table: interpolated ratios times (2.5)-(2.7).

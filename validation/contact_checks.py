@@ -61,9 +61,9 @@ from dynamics.contact import (
     steady_speed,
     steady_state,
 )
-from lubrication.files import save_figure
 from dynamics.reduced import ReducedParams
 from dynamics.simulate import PHASE_CODES, Initial, Trajectory
+from lubrication.files import save_figure
 
 from .checks import Check, absolute, at_most, relative
 

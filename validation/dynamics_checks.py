@@ -90,9 +90,9 @@ from typing import NamedTuple
 import numpy as np
 from scipy.special import ellipe
 
+from dynamics import reduced
 from dynamics.apparatus import Apparatus, preset
 from dynamics.forcemodels import closed_form
-from dynamics import reduced
 from dynamics.reduced import ReducedParams, initial_state, reduced_jacobian, reduced_rhs
 from dynamics.regime import classify
 from dynamics.scene import Initial
