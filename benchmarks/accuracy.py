@@ -8,7 +8,7 @@ Part A: forces at one instant. For delta/a in {0.003, 0.01, 0.03, 0.1,
 * the closed forms (2.5)-(2.7);
 * the Reynolds solver on each grid (sommerfeld, uniform), profile (thin
   gap (B1), exact eccentric gap) and N in {8, ..., 1024}, one Gauss point per
-  cell (what :func:`dynamics.forcemodels.reynolds` uses);
+  cell (what :func:`dynamics.equations.forces.reynolds` uses);
 * the finite-element Stokes solve on the default mesh
   (:func:`lubrication.stokes.default_mesh`) scaled by 0.25 ... 1.5 in both
   directions;
@@ -28,7 +28,7 @@ Cost. The median wall time of one force evaluation (one motion), from
 Python through the public faces (:func:`lubrication.fluid_forces`,
 :meth:`StokesTable.forces`; for the finite elements the whole solve with its
 factorisation, cache cleared) and, for the models the equations of motion
-can call, from a numba loop over :func:`dynamics.forcemodels.evaluate`:
+can call, from a numba loop over :func:`dynamics.equations.forces.evaluate`:
 what one right-hand side pays. Samples of at least 2 ms, interleaved over
 all models in shuffled rounds, JIT compilation excluded by a warm-up. A
 table's one-off build time is recorded apart.
@@ -53,7 +53,7 @@ less than half the run (measured while writing this script).
 
 Outputs: ``benchmarks/results/accuracy.json`` (all numbers), ``accuracy.md``
 (tables), ``accuracy_pareto.png``, and the compact study
-``dynamics/data/model_choice.json`` that :mod:`dynamics.auto` chooses from.
+``dynamics/data/model_choice.json`` that :mod:`dynamics.app.auto` chooses from.
 Run ``python -m benchmarks.accuracy`` from the project root (about 10 minutes
 on 2 cores).
 """
@@ -75,9 +75,9 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import RESULTS, publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
-from dynamics import forcemodels
 from dynamics.apparatus import Apparatus, preset
-from dynamics.scene import Initial
+from dynamics.equations import forces as forcemodels
+from dynamics.scenes.load import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 from lubrication.files import save_figure, write_text
 from lubrication.forces import Resistance, fluid_forces, resistance
@@ -392,7 +392,7 @@ def _sig(x):
 
 
 def model_choice(results: dict) -> dict:
-    """The compact study :mod:`dynamics.auto` chooses from: errors and costs on the (delta/a, kappa) grid.
+    """The compact study :mod:`dynamics.app.auto` chooses from: errors and costs on the (delta/a, kappa) grid.
 
     Errors are rounded up to 3 significant digits, costs rounded to 3.
     """
@@ -431,7 +431,7 @@ def model_choice(results: dict) -> dict:
                                  "finite-element Stokes solve on the default mesh scaled by 2; T_a per W_b "
                                  "against |T_a per W_a|",
                   "jit_s": "median wall seconds of one force evaluation from a numba loop over "
-                           "dynamics.forcemodels.evaluate (null: not callable from the equations of motion)",
+                           "dynamics.equations.forces.evaluate (null: not callable from the equations of motion)",
                   "python_s": "median wall seconds of one force evaluation through the Python face",
                   "trajectory_error": f"larger relative error of X_b and 1 - kappa after {T_END_TAU:g} tau from "
                                       f"kappa = {RELEASE.kappa:g}, phi = {RELEASE.phi:g} at rest, against the "
@@ -499,7 +499,7 @@ def to_markdown(results: dict, choice: dict) -> str:
                          f"| {r['steps']} | {_e(r['error'])} | {_e(r['x_b'])} | {_e(r['one_minus_kappa'])} |")
         lines.append("")
     eq = choice["equations"]
-    lines += ["## The stored study: what `dynamics.auto` chooses from", "",
+    lines += ["## The stored study: what `dynamics.app.auto` chooses from", "",
               "Trajectory error of the equations (LSODA, rtol 1e-10) against delta/a:", "",
               "| delta/a | reduced (2.11) | " + " | ".join(f"full, {f}" for f in eq["full"]) + " |",
               "|---|---|" + "---|" * len(eq["full"])]
@@ -511,10 +511,10 @@ def to_markdown(results: dict, choice: dict) -> str:
 
 def _choices_table() -> str:
     """What the automatic choice makes of the stored study for a scene, at a few tolerances and gaps."""
-    from dynamics.auto import choose_equations, choose_forces
+    from dynamics.app.auto import choose_equations, choose_forces
 
     lines = [("Automatic choices for a scene with `equations = \"auto\"` and `forces = \"auto\"` "
-              "(`dynamics.auto.resolve_model`, kappa up to 0.99): the equations first (the reduced ones against "
+              "(`dynamics.app.auto.resolve_model`, kappa up to 0.99): the equations first (the reduced ones against "
               "the full ones with Stokes-table forces), then, for the full equations, the cheapest forces whose "
               "force error and measured trajectory error both meet the tolerance. The reduced equations have the "
               "closed forms built in."),

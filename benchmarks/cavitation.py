@@ -4,14 +4,14 @@ The case is the one the equations of motion meet while the gap closes: the thin
 gap at kappa = 0.99, both cylinders turning (W_a = 1, W_b = 0.5 rad/s) and the
 inner cylinder sinking (eps' = 10 um/s), 200 cSt oil, p_ref - p_cav = 100 Pa,
 so that a cavity covers about a quarter of the film. The grid is the Sommerfeld
-grid with one Gauss point per cell, as :func:`dynamics.forcemodels.reynolds`
+grid with one Gauss point per cell, as :func:`dynamics.equations.forces.reynolds`
 builds it by default.
 
 Each solve is timed two ways, JIT compilation excluded:
 
 * "jit": a numba loop calling :func:`lubrication._cavitation_kernels.cavitating_film_forces`
   (the full film: :func:`lubrication._kernels.film_forces`) with the arguments that
-  :func:`dynamics.forcemodels.evaluate` passes, i.e. what a trajectory pays per
+  :func:`dynamics.equations.forces.evaluate` passes, i.e. what a trajectory pays per
   right-hand side;
 * "python": :func:`lubrication.cavitation.cavitating_forces` (the full film:
   :func:`lubrication.reynolds_forces`), validation and dataclasses included.
@@ -43,7 +43,11 @@ from benchmarks.reynolds import _machine, _time_all, _Timer  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, reynolds_forces  # noqa: E402
 from lubrication._cavitation_kernels import cavitating_film_forces  # noqa: E402
 from lubrication._kernels import THIN, film_forces  # noqa: E402
-from lubrication.cavitation import CAVITATION_MODELS, cavitating_forces, cavitating_pressure  # noqa: E402
+from lubrication.cavitation import (  # noqa: E402
+    CAVITATION_MODELS,
+    cavitating_forces,
+    cavitating_pressure,
+)
 from lubrication.reynolds import _psi_rule  # noqa: E402
 
 A, B, LENGTH = 0.008, 0.01125, 0.1035  # the paper's apparatus (Table 2), m
@@ -54,14 +58,14 @@ MOTION = Motion(eps_dot=1e-5, omega_a=1.0, omega_b=0.5)  # sinking and turning, 
 P_REF = 101325.0  # Pa
 P_CAV = P_REF - 100.0  # a cavity over about a quarter of the film
 CELLS = tuple(2**k for k in range(5, 12))  # 32 .. 2048
-POINTS_PER_CELL = 1  # as dynamics.forcemodels.reynolds by default
+POINTS_PER_CELL = 1  # as dynamics.equations.forces.reynolds by default
 ROUNDS = 15
 BATCH_SECONDS = 2e-3
 
 
 @njit
 def _cavitating_loop(repeats, model, kappa, omk, eps_dot, w_a, w_b, rule, m, p_cav, p_ref):
-    """Call the cavitating kernel ``repeats`` times as dynamics.forcemodels.evaluate does; return a checksum."""
+    """Call the cavitating kernel ``repeats`` times as dynamics.equations.forces.evaluate does; return a checksum."""
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     n = spsi.size // m
     none = np.empty(0)  # no tabulated profile (a global array would be read-only)
@@ -77,7 +81,7 @@ def _cavitating_loop(repeats, model, kappa, omk, eps_dot, w_a, w_b, rule, m, p_c
 
 @njit
 def _full_film_loop(repeats, kappa, omk, eps_dot, w_a, w_b, rule, m):
-    """Call the full-film kernel ``repeats`` times as dynamics.forcemodels.evaluate does; return a checksum."""
+    """Call the full-film kernel ``repeats`` times as dynamics.equations.forces.evaluate does; return a checksum."""
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted
     total = 0.0

@@ -24,10 +24,10 @@ if __package__ in (None, ""):
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from dynamics.apparatus import Apparatus
-from dynamics.contact import ContactParams, simulate_contact
-from dynamics.forcemodels import closed_form
-from dynamics.reduced import ReducedParams, simulate_reduced
-from dynamics.scene import Initial
+from dynamics.contact.reduced import ContactParams, simulate_contact
+from dynamics.equations.forces import closed_form
+from dynamics.equations.reduced import ReducedParams, simulate_reduced
+from dynamics.scenes.load import Initial
 from dynamics.simulate import simulate_full, simulate_full_contact
 
 PARAMS = ReducedParams(0.25, 1.0, 1.0)

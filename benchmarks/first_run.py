@@ -33,7 +33,7 @@ def _snail_run(numba_cache: str, outdir: str) -> float:
     """Wall seconds of one `snail run` of the default scene in a fresh process."""
     env = {**os.environ, "NUMBA_CACHE_DIR": numba_cache}
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "dynamics.cli", "run", "-o", outdir], env=env, check=True,
+    subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", "-o", outdir], env=env, check=True,
                    capture_output=True)
     return time.perf_counter() - start
 

@@ -59,7 +59,12 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish  # noqa: E402
 from benchmarks.reynolds import _machine  # noqa: E402
-from lubrication.stokes import _discretisation, _Discretisation, default_mesh, stokes_resistance  # noqa: E402
+from lubrication.stokes import (  # noqa: E402
+    _Discretisation,
+    _discretisation,
+    default_mesh,
+    stokes_resistance,
+)
 from lubrication.stokes_tables import StokesTable, table_forces  # noqa: E402
 
 DELTAS = (0.01, 0.41)

@@ -1,6 +1,6 @@
 r"""Wall time against accuracy of trajectories, with a plain-Python explicit baseline.
 
-The scene is the default of ``snail run`` (:func:`dynamics.scene.load_scene`): the
+The scene is the default of ``snail run`` (:func:`dynamics.scenes.load.load_scene`): the
 steel apparatus in 200 cSt oil on 2.4 degrees, kappa0 = 0.5, phi0 = 0.5 from rest,
 10 s. The inner cylinder falls to near contact in about 0.2 s and rocks there
 while 1 - kappa closes to about 1e-6: the full model's radial relaxation rate,
@@ -48,9 +48,9 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish  # noqa: E402
 from benchmarks.reynolds import _machine  # noqa: E402
-from dynamics import full  # noqa: E402
-from dynamics.forcemodels import closed_form  # noqa: E402
-from dynamics.scene import load_scene  # noqa: E402
+from dynamics.equations import full  # noqa: E402
+from dynamics.equations.forces import closed_form  # noqa: E402
+from dynamics.scenes.load import load_scene  # noqa: E402
 from dynamics.simulate import simulate_full, simulate_reduced  # noqa: E402
 
 __all__ = ["run", "plain_rhs", "to_markdown"]
@@ -65,10 +65,10 @@ GOALS = {"speed_ratio": 30.0, "warm_scene_seconds": 1.0, "snail_run_seconds": 10
 
 
 def plain_rhs(t, y, ap) -> np.ndarray:
-    """The right-hand side of :func:`dynamics.full.rhs` in plain Python, forces (2.5)-(2.7) inline.
+    """The right-hand side of :func:`dynamics.equations.full.rhs` in plain Python, forces (2.5)-(2.7) inline.
 
     Same state (u_x, u_z, v_x, v_z, Omega_a, Omega_b, X_b) and the same
-    equations; see the derivation in :mod:`dynamics.full`.
+    equations; see the derivation in :mod:`dynamics.equations.full`.
     """
     a, b = ap.a, ap.b
     delta = b - a
@@ -176,7 +176,7 @@ def _snail_run(env_extra: dict) -> tuple[float, float]:
         env = {**os.environ, **env_extra, "PYTHONPATH": str(ROOT)}
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "dynamics.cli", "run", "-o", out], cwd=ROOT, env=env,
+        subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", "-o", out], cwd=ROOT, env=env,
                        check=True, capture_output=True)
         wall = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)

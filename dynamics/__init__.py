@@ -7,12 +7,12 @@ Load a scene and simulate it::
     trajectory.columns["kappa"], trajectory.status
 """
 
-from .apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
-from .forcemodels import FORCE_MODELS, ForceModel, force_model
-from .reduced import ReducedParams
-from .run import run_scene
-from .scene import Initial, Scene, SceneError, load_scene, parse_scene
-from .simulate import (
+from dynamics.app.run import run_scene
+from dynamics.apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
+from dynamics.equations.forces import FORCE_MODELS, ForceModel, force_model
+from dynamics.equations.reduced import ReducedParams
+from dynamics.scenes.load import Initial, Scene, SceneError, load_scene, parse_scene
+from dynamics.simulate import (
     Trajectory,
     simulate_contact,
     simulate_full,

@@ -48,10 +48,9 @@ import math
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from dynamics.equations.reduced import ReducedParams
+from dynamics.equations.special import decay_exponent
 from lubrication.geometry import check_finite, check_range
-
-from .reduced import ReducedParams
-from .special import decay_exponent
 
 __all__ = ["Apparatus", "STEEL", "ALUMINIUM", "PRESETS", "preset", "STANDARD_GRAVITY"]
 

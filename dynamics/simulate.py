@@ -13,18 +13,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import contact, full, full_contact, reduced, rough_contact
-from .forcemodels import ForceModel
-from .integrate import Integration, integrate
-from .roughness import RoughContact
-from .scene import Initial
-from .validity import (
+from dynamics.contact import full as full_contact
+from dynamics.contact import reduced as contact
+from dynamics.contact import rough as rough_contact
+from dynamics.contact.roughness import RoughContact
+from dynamics.equations import full, reduced
+from dynamics.equations.forces import ForceModel
+from dynamics.equations.limits import (
     GAP_FLOOR,
     MAX_REYNOLDS,
     MAX_TURNS,
     gap_floor_event,
     reynolds_event,
 )
+from dynamics.integrate import Integration, integrate
+from dynamics.scenes.load import Initial
 
 __all__ = ["Initial", "Trajectory", "simulate_contact", "simulate_full", "simulate_full_contact", "simulate_reduced"]
 
@@ -105,7 +108,7 @@ def simulate_full(apparatus, force_model: ForceModel, initial: Initial, t_end: f
 def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.ContactParams, initial: Initial,
                           t_end: float, *, rtol: float = 1e-8, method: str = "LSODA",
                           max_reynolds: float = MAX_REYNOLDS, progress: str | None = None) -> Trajectory:
-    """The full model with rough contact (:mod:`dynamics.full_contact`) over ``t_end`` seconds.
+    """The full model with rough contact (:mod:`dynamics.contact.full`) over ``t_end`` seconds.
 
     ``rough`` carries kappa* and the paper's scaled friction angle psi; the
     physical friction coefficient is tan(psi_hat) = (delta/a) tan(psi) (C2).
@@ -151,7 +154,7 @@ def simulate_reduced(params: reduced.ReducedParams, initial: Initial, t_end_tau:
     With an ``apparatus`` the initial rates are in 1/s and the output is SI;
     without, everything is scaled (times and rates in tau, eps in delta, X_b in b).
     kappa' and phi' are not free in (2.11): ``initial.kappa_dot`` and ``phi_dot``
-    are not used. Stops as :func:`dynamics.reduced.simulate_reduced` does.
+    are not used. Stops as :func:`dynamics.equations.reduced.simulate_reduced` does.
     """
     tau = apparatus.tau if apparatus is not None else 1.0
     run = reduced.simulate_reduced(params, t_end_tau, initial.kappa, initial.phi, initial.omega_a * tau,
@@ -166,9 +169,9 @@ def simulate_contact(params: reduced.ReducedParams, rough: contact.ContactParams
                      progress: str | None = None) -> Trajectory:
     """The reduced model with rough contact (section 5); output as :func:`simulate_reduced`.
 
-    ``rough`` is a uniform minimum gap kappa* (:class:`dynamics.contact.ContactParams`)
+    ``rough`` is a uniform minimum gap kappa* (:class:`dynamics.contact.reduced.ContactParams`)
     or one that varies with the orientation of both surfaces
-    (:class:`dynamics.roughness.RoughContact`), whose material angles are added as columns.
+    (:class:`dynamics.contact.roughness.RoughContact`), whose material angles are added as columns.
     """
     tau = apparatus.tau if apparatus is not None else 1.0
     simulate = (rough_contact.simulate_rough_contact if isinstance(rough, RoughContact)

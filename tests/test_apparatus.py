@@ -7,8 +7,8 @@ import pint
 import pytest
 
 from dynamics.apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
-from dynamics.reduced import ReducedParams
-from dynamics.special import decay_exponent, runaway_spin_rate
+from dynamics.equations.reduced import ReducedParams
+from dynamics.equations.special import decay_exponent, runaway_spin_rate
 
 GRAM = 1e-3
 

@@ -15,7 +15,7 @@ import math
 
 import pytest
 
-from dynamics.auto import (
+from dynamics.app.auto import (
     Choice,
     choose_equations,
     choose_forces,
@@ -23,8 +23,8 @@ from dynamics.auto import (
     resolve_model,
     study,
 )
-from dynamics.cli import main
-from dynamics.scene import parse_scene
+from dynamics.app.cli import main
+from dynamics.scenes.load import parse_scene
 from lubrication.forces import Resistance, resistance
 from lubrication.geometry import Annulus, Fluid
 
@@ -172,7 +172,7 @@ def test_chosen_closed_forms_meet_the_tolerance_against_stokes(kappa):
 @pytest.mark.slow
 @pytest.mark.parametrize(("tolerance", "delta"), [(1e-2, APPARATUS), (1e-4, THIN)])
 def test_chosen_stokes_table_meets_the_tolerance_against_a_finite_element_solve(tolerance, delta):
-    from dynamics.forcemodels import force_model
+    from dynamics.equations.forces import force_model
     from lubrication.geometry import Motion
     from lubrication.stokes import default_mesh
 

@@ -17,7 +17,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lubrication import Annulus, Fluid, Motion, reynolds_forces
-from lubrication.cavitation import CAVITATION_MODELS, cavitating_forces, cavitating_pressure
+from lubrication.cavitation import (
+    CAVITATION_MODELS,
+    cavitating_forces,
+    cavitating_pressure,
+)
 from validation import cavitation_checks as checks
 
 A, B, L = 0.008, 0.01125, 0.1035

@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from dynamics.cli import main
+from dynamics.app.cli import main
 
 GEOMETRY = ["--a", "0.008", "--b", "0.01125"]
 
@@ -72,7 +72,7 @@ def test_bad_input_exits_2_with_a_message_and_no_traceback(capsys, args, words):
 
 def test_console_script_entry_point_and_validate_registration():
     """The installed command reads the subcommands registered by `validation`."""
-    proc = subprocess.run([sys.executable, "-m", "dynamics.cli", "--help"], capture_output=True, text=True,
+    proc = subprocess.run([sys.executable, "-m", "dynamics.app.cli", "--help"], capture_output=True, text=True,
                           check=False)
     assert proc.returncode == 0
     for command in ("forces", "run", "sweep", "validate", "corrections"):

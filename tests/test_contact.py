@@ -8,25 +8,27 @@ import numpy as np
 import pytest
 
 from dynamics.apparatus import STEEL
-from dynamics.contact import (
+from dynamics.contact.reduced import (
     FREE,
     LOCKED,
     SLIDING,
     ContactParams,
-    compact_steady_rates,
     locked_friction,
     locked_jacobian,
     locked_rhs,
-    onset_of_sliding,
     simulate_contact,
     sliding_jacobian,
     sliding_rhs,
+)
+from dynamics.contact.steady import (
+    compact_steady_rates,
+    onset_of_sliding,
     steady_locked,
     steady_sliding,
     steady_speed,
     steady_state,
 )
-from dynamics.reduced import ReducedParams, simulate_reduced
+from dynamics.equations.reduced import ReducedParams, simulate_reduced
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8

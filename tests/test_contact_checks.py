@@ -5,8 +5,9 @@ import math
 
 import pytest
 
-from dynamics.contact import ContactParams, onset_of_sliding, steady_state
-from dynamics.reduced import ReducedParams
+from dynamics.contact.reduced import ContactParams
+from dynamics.contact.steady import onset_of_sliding, steady_state
+from dynamics.equations.reduced import ReducedParams
 from validation import contact_checks
 
 

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import full
 from dynamics.apparatus import Apparatus, preset
-from dynamics.forcemodels import closed_form, reynolds
-from dynamics.reduced import ReducedParams
+from dynamics.equations import full
+from dynamics.equations.forces import closed_form, reynolds
+from dynamics.equations.reduced import ReducedParams
 from dynamics.simulate import Initial, simulate_full, simulate_reduced
 from validation.dynamics_checks import inertial_time
 

@@ -6,11 +6,14 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import contact, full, full_contact
 from dynamics.apparatus import Apparatus
-from dynamics.contact import ContactParams
-from dynamics.forcemodels import closed_form
-from dynamics.scene import Initial
+from dynamics.contact import full as full_contact
+from dynamics.contact import reduced as contact
+from dynamics.contact import steady as contact_steady
+from dynamics.contact.reduced import ContactParams
+from dynamics.equations import full
+from dynamics.equations.forces import closed_form
+from dynamics.scenes.load import Initial
 from dynamics.simulate import simulate_full_contact
 
 FORCES = closed_form()
@@ -110,7 +113,7 @@ def test_plastic_impact_conserves_angular_momentum_and_loses_energy(psi, sticks)
 @pytest.mark.parametrize("psi", [0.05, 0.5])  # sliding and locked branches at s = 1/4, kappa* = 0.98
 def test_steady_rolling_approaches_section_5_at_first_order_in_delta_over_a(psi):
     """|full - (5.6)-(5.11)| ~ C delta/a: log-log slope 1 over delta/a = 1e-2 ... 1e-3."""
-    reduced = contact.steady_state(0.25, 0.98, psi)
+    reduced = contact_steady.steady_state(0.25, 0.98, psi)
     ratios, errors = [0.01, 0.003, 0.001], []
     for d in ratios:
         ap = device(d)
@@ -137,7 +140,7 @@ def test_a_release_settles_on_the_full_models_own_steady_state(psi, phase):
     traj = run(ap, 0.98, psi, 400.0)
     c = traj.columns
     assert traj.status == "completed" and traj.info["final_phase"] == phase
-    reduced = contact.steady_state(0.25, 0.98, psi)
+    reduced = contact_steady.steady_state(0.25, 0.98, psi)
     steady = full_contact.steady_full_contact(
         ap, FORCES, ContactParams(0.98, psi), phase == contact.LOCKED,
         [reduced.phi - ap.alpha, reduced.omega_a / ap.tau, reduced.omega_b / ap.tau])
@@ -166,7 +169,7 @@ def test_extremes_of_contact_run_cleanly(kappa_star, psi, phase):
     assert traj.info["final_phase"] == phase
     assert all(np.all(np.isfinite(v)) for v in c.values())
     assert traj.steps < 100_000
-    reduced = contact.steady_state(0.25, kappa_star, psi)
+    reduced = contact_steady.steady_state(0.25, kappa_star, psi)
     assert c["omega_b"][-1] * ap.tau == pytest.approx(reduced.omega_b, rel=0.02)  # O(delta/a) = 1%
 
 

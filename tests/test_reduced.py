@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from dynamics.reduced import (
+from dynamics.equations.reduced import (
     ReducedParams,
     initial_state,
     reduced_jacobian,
@@ -15,7 +15,7 @@ from dynamics.reduced import (
     simulate_reduced,
     stretched_to_kappa,
 )
-from dynamics.special import (
+from dynamics.equations.special import (
     contact_equilibrium,
     decay_exponent,
     pushed_pendulum_energy,
@@ -233,7 +233,7 @@ def test_rocking_decay_exponent(mu_ratio):
 
     phi is fitted, not Omega_b: (3.9) states the envelope of phi - phi*
     directly, while Omega_b also carries the mean rolling rate 3 s zeta (see
-    :func:`dynamics.special.slow_approach`), which decays like 1/t, as fast as
+    :func:`dynamics.equations.special.slow_approach`), which decays like 1/t, as fast as
     the envelope itself, and would bias its peaks. Fitting against the
     computed zeta rather than t needs neither zeta0 nor the origin of time.
     Measured: 0.83343 for q = 5/6 and 1.13301 for q = 1.13265 (within 0.03%),

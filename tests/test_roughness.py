@@ -1,4 +1,4 @@
-"""Rough surfaces (dynamics.roughness) and contact on a moving constraint (dynamics.rough_contact)."""
+"""Rough surfaces (dynamics.contact.roughness) and contact on a moving constraint (dynamics.contact.rough)."""
 
 import functools
 import math
@@ -7,10 +7,16 @@ import re
 import numpy as np
 import pytest
 
-from dynamics.contact import FREE, LOCKED, SLIDING, ContactParams, simulate_contact, steady_state
-from dynamics.contact import locked_rhs, sliding_rhs
-from dynamics.reduced import ReducedParams, reduced_rhs
-from dynamics.rough_contact import (
+from dynamics.contact.reduced import (
+    FREE,
+    LOCKED,
+    SLIDING,
+    ContactParams,
+    locked_rhs,
+    simulate_contact,
+    sliding_rhs,
+)
+from dynamics.contact.rough import (
     _free_jacobian,
     contact_state,
     free_rhs,
@@ -20,7 +26,15 @@ from dynamics.rough_contact import (
     speed_table,
     speed_table_markdown,
 )
-from dynamics.roughness import CLIP_FLOOR, CLIP_KNEE, RoughContact, SurfaceHeights, soft_floor
+from dynamics.contact.roughness import (
+    CLIP_FLOOR,
+    CLIP_KNEE,
+    RoughContact,
+    SurfaceHeights,
+    soft_floor,
+)
+from dynamics.contact.steady import steady_state
+from dynamics.equations.reduced import ReducedParams, reduced_rhs
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8
@@ -238,7 +252,7 @@ def test_free_flight_is_the_reduced_model_and_its_sentinel_is_finite_at_the_cent
 def test_amplitude_zero_reproduces_the_uniform_contact(psi):
     """Figures 7 and 8 and stick-slip near the onset (psi = 0.13), 300 tau, rtol 1e-8.
 
-    The right-hand sides, guards and resets are those of dynamics.contact
+    The right-hand sides, guards and resets are those of dynamics.contact.reduced
     bit for bit; only the error control sees two more components. Same
     switches; switch times to 1e-5 (measured 1.4e-8, 1.4e-8 and 1.4e-6: the
     stick-slip times are sensitive, as in tests/test_contact.py), final
@@ -303,7 +317,7 @@ def test_no_nan_or_stall_from_no_friction_to_strong_friction(amplitude, psi):
 
     Measured 2,200-5,400 steps (about 10-30 a tau); a collapsed step would need
     millions, so 30,000 bounds it. (tan(psi) -> infinity is the known limit
-    in dynamics.rough_contact.)
+    in dynamics.contact.rough.)
     """
     traj = _run(amplitude, psi, 2, 200.0)
     assert traj.status == 0 and traj.steps < 30_000

@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from dynamics.cli import main
+from dynamics.app.cli import main
 from dynamics.integrate import integrate
 
 SHORT = ["--t-end", "2 s"]
@@ -116,7 +116,7 @@ t_end_tau = 300
 @pytest.mark.parametrize(("psi", "regime"), [(0.05, "sliding rolling"), (0.5, "locked rolling")])
 def test_a_contact_scene_settles_into_steady_rolling(tmp_path, capsys, psi, regime):
     """The paper's figure 7 and 8 parameters: contact at t = 5.82 tau, then the steady state of (5.6)-(5.11)."""
-    from dynamics.contact import steady_state
+    from dynamics.contact.steady import steady_state
 
     scene = tmp_path / "contact.toml"
     scene.write_text(FIGURE_7.format(psi=psi))

@@ -6,8 +6,15 @@ import math
 import pytest
 
 from dynamics.apparatus import STEEL, Apparatus
-from dynamics.scene import (Cavitation, Contact, Groups, SceneError, load_scene, parse_scene,
-                            resolved_toml)
+from dynamics.scenes.load import (
+    Cavitation,
+    Contact,
+    Groups,
+    SceneError,
+    load_scene,
+    parse_scene,
+    resolved_toml,
+)
 
 # A physical scene and a dimensionless [groups] scene, as mappings to edit.
 PHYSICAL = {

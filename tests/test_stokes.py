@@ -15,8 +15,15 @@ pytest.importorskip("skfem")
 from lubrication.closed_form import closed_form_forces  # noqa: E402
 from lubrication.geometry import Annulus, Fluid, Motion  # noqa: E402
 from lubrication.stokes import (  # noqa: E402
-    _INSTALL_HINT, _discretisation, _require, default_mesh, stokes_flow, stokes_forces,
-    stokes_resistance, write_vtu)
+    _INSTALL_HINT,
+    _discretisation,
+    _require,
+    default_mesh,
+    stokes_flow,
+    stokes_forces,
+    stokes_resistance,
+    write_vtu,
+)
 
 NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "f_chi_per_w_b", "t_a_per_w_a", "t_a_per_w_b")
 

@@ -19,8 +19,16 @@ from lubrication.forces import Resistance  # noqa: E402
 from lubrication.geometry import Annulus, Fluid, Motion  # noqa: E402
 from lubrication.stokes import _INSTALL_HINT, stokes_resistance  # noqa: E402
 from lubrication.stokes_tables import (  # noqa: E402
-    KAPPA_MAX, N_NODES, RATIO_NAMES, TABLE_VERSION, StokesTable, cache_folder, contact_limits,
-    table_forces, table_ratios)
+    KAPPA_MAX,
+    N_NODES,
+    RATIO_NAMES,
+    TABLE_VERSION,
+    StokesTable,
+    cache_folder,
+    contact_limits,
+    table_forces,
+    table_ratios,
+)
 
 THIN = 0.03  # cheap default-mesh solves (0.2 s): a full default table in about 3 s
 

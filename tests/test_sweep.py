@@ -7,10 +7,21 @@ import tomllib
 import numpy as np
 import pytest
 
-from dynamics.cli import main
+from dynamics.app.cli import main
+from dynamics.app.sweeps.sweep import (
+    NUMBERS,
+    SweepError,
+    classify_point,
+    load_sweep,
+    parse_sweep,
+    plot_regime_map,
+    point_key,
+    read_rows,
+    run_point,
+    run_sweep,
+    slope_limits,
+)
 from dynamics.simulate import Trajectory
-from dynamics.sweep import (NUMBERS, SweepError, classify_point, load_sweep, parse_sweep, plot_regime_map,
-                            point_key, read_rows, run_point, run_sweep, slope_limits)
 
 # mu_ = 1 and Upsilon = 1 as in the paper's figures 2 (s = 1/4 rocks) and 3 (s = 0.9 runs away).
 BASE = """

@@ -54,8 +54,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynamics.apparatus import preset
-from dynamics.forcemodels import reynolds
-from dynamics.scene import Initial
+from dynamics.equations.forces import reynolds
+from dynamics.scenes.load import Initial
 from dynamics.simulate import Trajectory, simulate_full
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import CAVITATION_MODELS, cavitating_pressure

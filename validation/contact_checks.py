@@ -1,8 +1,8 @@
 r"""Rough contact (section 5): figures 7-10 and Table 3 regenerated from simulations.
 
 Every number checked here comes from a run of the hybrid model of
-:mod:`dynamics.contact` (through :func:`dynamics.simulate.simulate_contact`),
-compared with the paper's formulas as :mod:`dynamics.contact` implements them:
+:mod:`dynamics.contact.reduced` (through :func:`dynamics.simulate.simulate_contact`),
+compared with the paper's formulas as :mod:`dynamics.contact.reduced` implements them:
 the fixed points (5.6)-(5.11) with (5.11) corrected (erratum 6) and the locking
 test read with tan(psi) (erratum 7), the compact forms (5.12), the onset of
 sliding (6.4) and the speed (6.1)-(6.2).
@@ -48,20 +48,23 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import brentq
 
-from dynamics import reduced, simulate
+from dynamics import simulate
 from dynamics.apparatus import preset
-from dynamics.contact import (
+from dynamics.contact.reduced import (
     LOCKED,
     SLIDING,
     ContactParams,
-    compact_steady_rates,
     locked_jacobian,
-    onset_of_sliding,
     sliding_jacobian,
+)
+from dynamics.contact.steady import (
+    compact_steady_rates,
+    onset_of_sliding,
     steady_speed,
     steady_state,
 )
-from dynamics.reduced import ReducedParams
+from dynamics.equations import reduced
+from dynamics.equations.reduced import ReducedParams
 from dynamics.simulate import PHASE_CODES, Initial, Trajectory
 from lubrication.files import save_figure
 
@@ -103,7 +106,7 @@ SANDPAPER_SLOPE_DEG = 2.4  # the steel run of figure 5(a)
 def settling_rate(params: ReducedParams, contact: ContactParams) -> float:
     """Slowest decay rate (1/tau) of the steady contact phase, linearised at its fixed point.
 
-    The phase is the one :func:`dynamics.contact.steady_state` selects; the
+    The phase is the one :func:`dynamics.contact.reduced.steady_state` selects; the
     Jacobian is that of (2.11b), (5.2), (2.11d) (sliding: phi, Omega_a,
     Omega_b) or of (2.11b), (2.11d) with Omega_a = Omega_b (locked: phi,
     Omega), the passive X_b dropped.
@@ -154,7 +157,7 @@ def _max_or_nan(values) -> float:
 def onset_slope(psi: float, kappa_star: float = 1.0) -> float:
     """The slope group s at which the steady state starts to slide for friction angle ``psi``.
 
-    Inverts :func:`dynamics.contact.onset_of_sliding`: (6.4) for kappa* = 1,
+    Inverts :func:`dynamics.contact.reduced.onset_of_sliding`: (6.4) for kappa* = 1,
     the exact locking test (erratum 7) otherwise.
     """
     return brentq(lambda s: onset_of_sliding(s, kappa_star) - psi, 0.0, kappa_star * (1.0 - 1e-12),

@@ -12,7 +12,7 @@ rocking is measured against the multiple scales (3.9)-(3.10): the centre
 phi* = pi + asin(s) (the text's "phi = -asin(s)" names it by its sine), the
 frequency, the rate sqrt(1 - s^2) at which 1/zeta grows, the decay exponent q of
 the envelope (also for mu_ = 3), and the distance rolled, which grows as
-(3 s / sqrt(1 - s^2)) ln t (:func:`dynamics.special.slow_approach`), not as the
+(3 s / sqrt(1 - s^2)) ln t (:func:`dynamics.equations.special.slow_approach`), not as the
 text's t^(1 - q) = t^(1/6). The runaway is measured against (3.11).
 
 The runaway of the full model
@@ -90,14 +90,17 @@ from typing import NamedTuple
 import numpy as np
 from scipy.special import ellipe
 
-from dynamics import reduced
+from dynamics.app.regime import classify
 from dynamics.apparatus import Apparatus, preset
-from dynamics.forcemodels import closed_form
-from dynamics.reduced import ReducedParams, initial_state, reduced_jacobian, reduced_rhs
-from dynamics.regime import classify
-from dynamics.scene import Initial
-from dynamics.simulate import simulate_full, simulate_reduced
-from dynamics.special import (
+from dynamics.equations import reduced
+from dynamics.equations.forces import closed_form
+from dynamics.equations.reduced import (
+    ReducedParams,
+    initial_state,
+    reduced_jacobian,
+    reduced_rhs,
+)
+from dynamics.equations.special import (
     contact_equilibrium,
     decay_exponent,
     rocking_frequency,
@@ -106,6 +109,8 @@ from dynamics.special import (
     slow_approach,
     steady_rolling,
 )
+from dynamics.scenes.load import Initial
+from dynamics.simulate import simulate_full, simulate_reduced
 
 from .checks import Check, absolute, at_most, relative
 
@@ -777,6 +782,6 @@ def _paragraph(steep: dict, paper_slope: dict, maps: dict, seconds: float) -> st
         f"s b/a = {ap.s * ap.b / ap.a:.2f}) {np.mean(full5 == 1):.0%} of the starts from rest ran away, "
         f"where the reduced model with the same groups rocks from {np.mean(maps[(5.0, 'reduced')] == 0):.0%} "
         f"of them; at 4 degrees the full model rocks from {np.mean(maps[(4.0, 'full')] == 0):.0%}. The "
-        "regime is dynamics.regime.classify over 6 s; a full-model runaway is stopped at the gap Reynolds "
+        "regime is dynamics.app.regime.classify over 6 s; a full-model runaway is stopped at the gap Reynolds "
         f"number 10. The group ran in {seconds:.0f} s."
     )

@@ -1,7 +1,7 @@
 r"""Rough contact in the full model (2.1)-(2.4): its limit to section 5, and the paper's apparatus.
 
 The full model carries contact as a unilateral constraint with Coulomb friction
-(:mod:`dynamics.full_contact`). Section 5 is its leading order in delta/a, so:
+(:mod:`dynamics.contact.full`). Section 5 is its leading order in delta/a, so:
 
 * Steady rolling. The full model's own fixed points in contact (chi' = 0,
   rates constant, found by Newton's method on its contact equations) must
@@ -34,10 +34,11 @@ from pathlib import Path
 import numpy as np
 
 from dynamics.apparatus import Apparatus, preset
-from dynamics.contact import LOCKED, ContactParams, steady_state
-from dynamics.forcemodels import closed_form, force_model
-from dynamics.full_contact import steady_full_contact
-from dynamics.scene import Initial
+from dynamics.contact.full import steady_full_contact
+from dynamics.contact.reduced import LOCKED, ContactParams
+from dynamics.contact.steady import steady_state
+from dynamics.equations.forces import closed_form, force_model
+from dynamics.scenes.load import Initial
 from dynamics.simulate import Trajectory, simulate_full_contact
 from lubrication.files import save_figure
 
@@ -129,8 +130,8 @@ def apparatus_speeds(quick: bool) -> dict:
 def _figure(path: Path, runs: dict) -> None:
     import matplotlib.pyplot as plt
 
-    from dynamics.contact import simulate_contact
-    from dynamics.reduced import ReducedParams
+    from dynamics.contact.reduced import simulate_contact
+    from dynamics.equations.reduced import ReducedParams
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharex=True)
     for ax, (branch, psi) in zip(axes, BRANCHES.items()):
@@ -211,7 +212,7 @@ def _paragraph(slopes, runs, stick_slip, phases, once, speeds) -> str:
               for branch in runs}
     text = (
         "Contact in the full model is a unilateral constraint at eps* = delta - sigma with Coulomb friction at the "
-        "single contact point and a plastic impact (dynamics.full_contact). Its steady rolling states approach "
+        "single contact point and a plastic impact (dynamics.contact.full). Its steady rolling states approach "
         f"section 5's (5.6)-(5.11) at first order in delta/a: log-log slopes {ratios}. Figure 7's release at "
         f"delta/a = 0.01 touches at t = {impact['sliding']:.4g} tau and settles on the full model's own fixed point "
         "(figure: the rates against the reduced hybrid run). Just above the onset of sliding (psi = "

@@ -1,6 +1,6 @@
 r"""The automatic model choice against computations made now.
 
-:mod:`dynamics.auto` chooses from the stored speed-versus-accuracy study
+:mod:`dynamics.app.auto` chooses from the stored speed-versus-accuracy study
 (``dynamics/data/model_choice.json``, written by ``benchmarks/accuracy.py``).
 These checks do not trust the stored numbers: each choice is recomputed at
 run time against the reference it claims to meet.
@@ -28,10 +28,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from dynamics import forcemodels
+from dynamics.app.auto import choose_equations, choose_forces
 from dynamics.apparatus import Apparatus, preset
-from dynamics.auto import choose_equations, choose_forces
-from dynamics.scene import Initial
+from dynamics.equations import forces as forcemodels
+from dynamics.scenes.load import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 from lubrication.forces import Resistance, resistance
 from lubrication.geometry import Annulus, Fluid, Motion
@@ -121,7 +121,7 @@ def run(outdir, quick: bool = False) -> tuple[list[Check], list[str], str]:
                         eq_wide.model == "full" and reduced_wide_error > EQUATIONS_TOLERANCE, "lower-bound",
                         "the full equations were needed"))
     paragraph = (
-        "The automatic choice (`dynamics.auto`) reads the stored speed-versus-accuracy study "
+        "The automatic choice (`dynamics.app.auto`) reads the stored speed-versus-accuracy study "
         "(`benchmarks/accuracy.py`); here each choice is recomputed against a fresh finite-element Stokes "
         "solve (default mesh refined by 1.5) or a fresh trajectory. "
         f"At a force tolerance of {FORCE_TOLERANCE:g} it picks {thin.model} at delta/a = {THIN:g} "

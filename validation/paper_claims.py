@@ -163,7 +163,7 @@ def _distance(f: Found) -> str:
     window = re.search(r"over \[([\d.]+), ([\d.]+)\]", c.name)
     text = (f"X_b gains {_g(c.measured, 4)} (units of b) per e-fold of t"
             f"{f' over [{window[1]}, {window[2]}] tau' if window else ''}, against 3 s/sqrt(1 - s^2) = "
-            f"{_g(c.reference, 4)}: X_b = (3 s/sqrt(1 - s^2)) ln t + const (dynamics.special.slow_approach).")
+            f"{_g(c.reference, 4)}: X_b = (3 s/sqrt(1 - s^2)) ln t + const (dynamics.equations.special.slow_approach).")
     q = f.get("q")
     if window and q:
         # X_b ~ t^(1-q) gains (1 - q) t^(1-q) per e-fold: it would grow by this factor across the window

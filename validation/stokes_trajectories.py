@@ -2,7 +2,7 @@ r"""How much do trajectories change when the lubrication forms are replaced by f
 
 The paper's apparatus is not thin: delta/a = 0.406 for both the steel and the
 aluminium device. The closed forms (2.5)-(2.7) are the leading order in delta/a;
-the full Stokes forces of :func:`dynamics.forcemodels.stokes` (interpolated in a
+the full Stokes forces of :func:`dynamics.equations.forces.stokes` (interpolated in a
 resistance table built with the finite-element solver) hold at any delta/a. Here the
 full model (2.1)-(2.4) is integrated with both, from the same start (kappa = 0.5,
 phi = 0.5, at rest), for the paper's oils (50, 200 and 500 cSt) and slopes, for
@@ -32,10 +32,10 @@ from pathlib import Path
 
 import numpy as np
 
+from dynamics.app.regime import classify
 from dynamics.apparatus import preset
-from dynamics.forcemodels import closed_form, stokes
-from dynamics.regime import classify
-from dynamics.scene import Initial
+from dynamics.equations.forces import closed_form, stokes
+from dynamics.scenes.load import Initial
 from dynamics.simulate import Trajectory, simulate_full
 
 from .checks import Check, absolute
@@ -91,7 +91,7 @@ class Pair:
         return self.mean_speed("stokes") / self.mean_speed("closed-form")
 
     def regime(self, forces: str) -> str:
-        """Regime of the run with ``forces`` (:func:`dynamics.regime.classify`)."""
+        """Regime of the run with ``forces`` (:func:`dynamics.app.regime.classify`)."""
         return classify(self.runs[forces])[0]
 
     @property

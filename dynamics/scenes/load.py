@@ -44,7 +44,7 @@ becomes depends on ``model.equations``:
   the distinguished limit delta/a -> 0 itself, which only (2.11) describes).
   For a finite gap the apparatus is built as for ``"full"``, and the run
   chooses between the equations from the speed-accuracy study
-  (:mod:`dynamics.auto`); either way the output is then in SI units.
+  (:mod:`dynamics.app.auto`); either way the output is then in SI units.
 
 :func:`resolved_toml` writes the resolved scene back as TOML with SI numbers.
 A physical scene is written as its apparatus, whether it came from a preset
@@ -67,10 +67,9 @@ from typing import Any
 
 import pint
 
+from dynamics.apparatus import PRESETS, Apparatus
+from dynamics.equations.reduced import ReducedParams
 from lubrication.reynolds import GRIDS, MAX_CELLS, MIN_CELLS
-
-from .apparatus import PRESETS, Apparatus
-from .reduced import ReducedParams
 
 __all__ = [
     "CAVITATION_MODELS",
@@ -767,7 +766,7 @@ def load_scene(path: str | os.PathLike | None = None, overrides: Iterable[str] =
         If the file cannot be read, or for any error :func:`parse_scene` reports.
     """
     if path is None:
-        resource = files(__package__) / "scenes" / "default.toml"
+        resource = files("dynamics.scenes") / "default.toml"
         return parse_scene(resource.read_text(encoding="utf-8"), str(resource), overrides)
     try:
         text = Path(path).read_text(encoding="utf-8")

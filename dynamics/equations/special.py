@@ -19,9 +19,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dynamics.equations.reduced import stretched_to_kappa
 from lubrication.geometry import check_finite, check_range
-
-from .reduced import stretched_to_kappa
 
 __all__ = [
     "SlowApproach",
@@ -68,7 +67,7 @@ def sedimentation(t, kappa0: float):
     """Sedimentation from rest on a level plane (3.3): s = 0, phi = pi, no rotation.
 
     kappa = T / sqrt(1 + T^2) with T = t + kappa0/sqrt(1 - kappa0^2); T is the
-    stretched radius r of :mod:`dynamics.reduced`.
+    stretched radius r of :mod:`dynamics.equations.reduced`.
 
     Parameters
     ----------

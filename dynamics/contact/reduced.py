@@ -2,7 +2,7 @@ r"""Rough contact in the reduced model (section 5, Appendix C), as a hybrid syst
 
 Asperities stop the approach of the cylinders at kappa = kappa* < 1,
 zeta* = sqrt(1 - kappa*^2). Time is in units of tau, rates in 1/tau, as in
-:mod:`dynamics.reduced`, whose right-hand side (2.11) every phase below reuses.
+:mod:`dynamics.equations.reduced`, whose right-hand side (2.11) every phase below reuses.
 
 Contact forces and their signs
 ------------------------------
@@ -37,7 +37,7 @@ With W = (Omega_a + Omega_b)/2, D = Omega_b - Omega_a and
 A* = (2 + kappa*^2) zeta* / (2 kappa*):
 
 free (kappa < kappa*)
-    (2.11a-d) exactly as in :mod:`dynamics.reduced`, integrated in the
+    (2.11a-d) exactly as in :mod:`dynamics.equations.reduced`, integrated in the
     stretched variables (xi, eta, Omega_a, Omega_b, X_b).
 
 contact (kappa = kappa*): state (phi, Omega_a, Omega_b, X_b), C_e = -cos(phi),
@@ -47,8 +47,8 @@ contact (kappa = kappa*): state (phi, Omega_a, Omega_b, X_b), C_e = -cos(phi),
     (2.11d)  mu_ Upsilon Omega_b'  = s + kappa* sin(phi) - (1/2) Upsilon Omega_a'
              X_b'                  = Omega_b
 
-    (T is (2.11c)'s torque with phi' from (2.11b), see :mod:`dynamics.reduced`).
-    The right-hand side is that of :func:`dynamics.reduced.reduced_rhs` on the
+    (T is (2.11c)'s torque with phi' from (2.11b), see :mod:`dynamics.equations.reduced`).
+    The right-hand side is that of :func:`dynamics.equations.reduced.reduced_rhs` on the
     circle r = r* = kappa*/zeta*, its radial part discarded (the reaction
     holds r fixed) and the friction added.
 
@@ -114,27 +114,7 @@ a discontinuity. With psi = 0 the friction vanishes and D = 0 is no event at
 all. A run that still switched more than ``max_switches`` times would stop
 with that reason rather than hang.
 
-Steady rolling (5.6)-(5.12)
----------------------------
-Setting phi' = Omega_a' = Omega_b' = 0 in contact: (2.11d) gives
-kappa* sin(phi) = -s (5.6), with cos(phi) = -sqrt(1 - s^2/kappa*^2) < 0 for
-contact, so phi = pi + arcsin(s/kappa*); (2.11b) gives
-
-    Omega_a + Omega_b = s (2 + kappa*^2) zeta* / kappa*^2       (5.7)
-
-and (5.2) gives T = C_x (5.9), that is D/(6 zeta*) - s/2 = C_x. Locked
-(D = 0): C_x = -s/2 (equal to (5.4) at (5.6)), so locking needs
-s < 2 sqrt(1 - s^2/kappa*^2) tan(psi) (the text below (5.9) prints tan(phi),
-erratum 7), and Omega_a = Omega_b = s (2 + kappa*^2) zeta* / (2 kappa*^2)
-(5.10). Sliding: C_x = sigma tan(psi) cos(phi) with sigma = sgn(s), so
-D = 3 zeta* (s + 2 sigma cos(phi) tan(psi)) and
-
-    Omega_a = s zeta*^3/kappa*^2 - 3 sigma zeta* cos(phi) tan(psi),
-    Omega_b = s (2 + kappa*^2) zeta*/kappa*^2 - Omega_a,
-
-(5.11) without the factor 1/2 the text prints in both first terms (erratum 6;
-the printed form is not a fixed point). For zeta* -> 0 both branches become
-the compact (5.12), with relative errors O(zeta*^2).
+The steady rolling states are in :mod:`dynamics.contact.steady`.
 """
 
 from __future__ import annotations
@@ -145,10 +125,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lubrication.geometry import check_finite, check_range
-
-from .integrate import Event, integrate
-from .reduced import (
+from dynamics.equations.limits import MAX_TURNS, runaway_event
+from dynamics.equations.reduced import (
     ReducedParams,
     ReducedTrajectory,
     initial_state,
@@ -156,31 +134,25 @@ from .reduced import (
     reduced_rhs,
     stretched_to_kappa,
 )
-from .validity import MAX_TURNS, runaway_event
+from dynamics.integrate import Event, integrate
+from lubrication.geometry import check_finite, check_range
 
 __all__ = [
     "FREE",
     "LOCKED",
     "SLIDING",
     "ContactParams",
-    "ContactSteadyState",
     "ContactTrajectory",
     "PhaseStart",
     "Switch",
-    "compact_steady_rates",
     "free_columns",
     "locked_friction",
     "locked_jacobian",
     "locked_rhs",
-    "onset_of_sliding",
     "run_phases",
     "simulate_contact",
     "sliding_jacobian",
     "sliding_rhs",
-    "steady_locked",
-    "steady_sliding",
-    "steady_speed",
-    "steady_state",
 ]
 
 FREE, SLIDING, LOCKED = "free", "sliding", "locked"
@@ -225,7 +197,7 @@ class ContactParams:
 
     @property
     def r_star(self) -> float:
-        """Stretched radius r* = kappa*/zeta* of :mod:`dynamics.reduced` at contact."""
+        """Stretched radius r* = kappa*/zeta* of :mod:`dynamics.equations.reduced` at contact."""
         return self.kappa_star / self.zeta_star
 
     @property
@@ -244,7 +216,7 @@ class Switch(NamedTuple):
 
 @dataclass(frozen=True, kw_only=True)
 class ContactTrajectory(ReducedTrajectory):
-    """A hybrid solution: the columns of :class:`dynamics.reduced.ReducedTrajectory` and more.
+    """A hybrid solution: the columns of :class:`dynamics.equations.reduced.ReducedTrajectory` and more.
 
     Every switching time appears twice: the state just before the switch
     (labelled with the old phase) and just after (the new phase), so that the
@@ -277,7 +249,7 @@ def locked_friction(params: ReducedParams, kappa_star: float, phi):
 
 
 def _on_circle(phi: float, omega_a: float, omega_b: float, x_b: float, r_star: float) -> np.ndarray:
-    """The state of :mod:`dynamics.reduced` at kappa = kappa*, for its right-hand side."""
+    """The state of :mod:`dynamics.equations.reduced` at kappa = kappa*, for its right-hand side."""
     return np.array([r_star * math.sin(phi), r_star * math.cos(phi), omega_a, omega_b, x_b])
 
 
@@ -625,140 +597,3 @@ def simulate_contact(params: ReducedParams, contact: ContactParams, t_end: float
         t_end, phi0, rtol=rtol, atol=atol, method=method, max_steps=max_steps, max_switches=max_switches,
         progress=progress)
     return ContactTrajectory(**fields)
-
-
-# -- steady rolling (5.6)-(5.12), onset of sliding (6.4), speed (6.1) ----------------
-
-class ContactSteadyState(NamedTuple):
-    """A steadily rolling state in contact: kappa = kappa*, phi' = Omega_a' = Omega_b' = 0."""
-
-    phase: str
-    phi: float
-    omega_a: float
-    omega_b: float
-    c_eps: float
-    c_chi: float
-
-
-class _Steady(NamedTuple):
-    """What both branches share: phi of (5.6), its cosine, zeta*, and Omega_a + Omega_b of (5.7)."""
-
-    phi: float
-    cos: float
-    zeta: float
-    total: float
-
-
-def _steady_common(s: float, kappa_star: float) -> _Steady:
-    """kappa* sin(phi) = -s (5.6) on the pushing side cos(phi) < 0, and (5.7)."""
-    q = s / kappa_star
-    zeta = math.sqrt((1.0 - kappa_star) * (1.0 + kappa_star))
-    return _Steady(phi=math.pi + math.asin(q), cos=-math.sqrt((1.0 - q) * (1.0 + q)), zeta=zeta,
-                   total=s * (2.0 + kappa_star**2) * zeta / kappa_star**2)
-
-
-def _check_steady(s: float, kappa_star: float) -> tuple[float, float]:
-    kappa_star = check_range("kappa_star", kappa_star, 0.0, 1.0, low_open=True)
-    return check_range("s", s, -kappa_star, kappa_star, low_open=True), kappa_star
-
-
-def steady_locked(s: float, kappa_star: float) -> ContactSteadyState:
-    """The locked fixed point (5.6), (5.10): Omega_a = Omega_b = s (2 + kappa*^2) zeta* / (2 kappa*^2).
-
-    Parameters
-    ----------
-    s : float
-        Slope group, |s| < kappa* (beyond, no contact fixed point: the pushed
-        pendulum winds).
-    kappa_star : float
-        In (0, 1).
-
-    Returns
-    -------
-    ContactSteadyState
-        phi = pi + arcsin(s/kappa*); the friction C_x = -s/2 ((5.4) at (5.6))
-        that holds it, whether or not (5.5) allows it.
-    """
-    s, kappa_star = _check_steady(s, kappa_star)
-    common = _steady_common(s, kappa_star)
-    return ContactSteadyState(LOCKED, common.phi, 0.5 * common.total, 0.5 * common.total, -common.cos, -0.5 * s)
-
-
-def steady_sliding(s: float, kappa_star: float, psi: float) -> ContactSteadyState:
-    """The sliding fixed point (5.6), (5.7), (5.9): (5.11) as corrected (erratum 6).
-
-    Omega_a = s zeta*^3/kappa*^2 - 3 sigma zeta* cos(phi) tan(psi),
-    Omega_b = s (2 + kappa*^2) zeta*/kappa*^2 - Omega_a, sigma = sgn(s),
-    with cos(phi) = -sqrt(1 - s^2/kappa*^2). Meaningful when (5.5) fails.
-    """
-    s, kappa_star = _check_steady(s, kappa_star)
-    tan_psi = math.tan(check_range("psi", psi, 0.0, 0.5 * math.pi, unit="rad"))
-    common = _steady_common(s, kappa_star)
-    sigma = math.copysign(1.0, s) if s != 0.0 else 0.0
-    c_x = sigma * tan_psi * common.cos
-    omega_a = s * common.zeta**3 / kappa_star**2 - 3.0 * common.zeta * c_x
-    return ContactSteadyState(SLIDING, common.phi, omega_a, common.total - omega_a, -common.cos, c_x)
-
-
-def steady_state(s: float, kappa_star: float, psi: float) -> ContactSteadyState:
-    """The steady rolling state: locked if |s| < 2 sqrt(1 - s^2/kappa*^2) tan(psi) (erratum 7), else sliding."""
-    locked = steady_locked(s, kappa_star)
-    tan_psi = math.tan(check_range("psi", psi, 0.0, 0.5 * math.pi, unit="rad"))
-    return locked if abs(locked.c_chi) < locked.c_eps * tan_psi else steady_sliding(s, kappa_star, psi)
-
-
-def onset_of_sliding(s: float, kappa_star: float = 1.0) -> float:
-    """Friction angle psi_c below which the steady state slides: (6.4) tan(psi_c) = s / (2 sqrt(1 - s^2)).
-
-    With ``kappa_star`` < 1 the exact threshold of the locking test,
-    tan(psi_c) = s / (2 sqrt(1 - s^2/kappa*^2)); the default kappa* = 1 is
-    its zeta* -> 0 limit, (6.4). 0 <= s < kappa*.
-    """
-    kappa_star = check_range("kappa_star", kappa_star, 0.0, 1.0, low_open=True, high_open=False)
-    s = check_range("s", s, 0.0, kappa_star)
-    q = s / kappa_star
-    return math.atan(0.5 * s / math.sqrt((1.0 - q) * (1.0 + q)))
-
-
-def compact_steady_rates(s: float, kappa_star: float, psi: float) -> tuple[float, float]:
-    """(Omega_a, Omega_b) of the compact forms (5.12), leading order in zeta* << 1.
-
-    Omega_a = 3 zeta* s Min(1/2, sqrt(1 - s^2) tan(psi)/s),
-    Omega_b = 3 zeta* s Max(1/2, 1 - sqrt(1 - s^2) tan(psi)/s); 0 < s < 1.
-    """
-    kappa_star = check_range("kappa_star", kappa_star, 0.0, 1.0, low_open=True)
-    s = check_range("s", s, 0.0, 1.0, low_open=True)
-    tan_psi = math.tan(check_range("psi", psi, 0.0, 0.5 * math.pi, unit="rad"))
-    ratio = math.sqrt((1.0 - s) * (1.0 + s)) * tan_psi / s
-    scale = 3.0 * math.sqrt((1.0 - kappa_star) * (1.0 + kappa_star)) * s
-    return scale * min(0.5, ratio), scale * max(0.5, 1.0 - ratio)
-
-
-def steady_speed(v_star: float, alpha: float, s: float, kappa_star: float, psi: float, *,
-                 exact: bool = False) -> float:
-    """Steady rolling speed of the outer cylinder (6.1), in the units of ``v_star``.
-
-    V = V* sin(alpha) zeta* Max(1/2, 1 - sqrt(1 - s^2) tan(psi)/s), with
-    V* = b M delta g / (4 nu m''_a) (6.2) (:attr:`dynamics.apparatus.Apparatus.v_star`).
-    It is b Omega_b / tau with Omega_b of (5.12): 3 s b / tau = V* sin(alpha).
-
-    Parameters
-    ----------
-    v_star : float
-        Speed scale V* (6.2), positive.
-    alpha : float
-        Slope angle (rad), in (0, pi/2).
-    s : float
-        Slope group of the same apparatus and alpha, in (0, 1) (in (0, kappa*)
-        when ``exact``).
-    kappa_star, psi : float
-        Contact parameters, see :class:`ContactParams`.
-    exact : bool
-        Use the exact Omega_b of :func:`steady_state` instead of (5.12):
-        V = V* sin(alpha) Omega_b / (3 s).
-    """
-    v_star = check_range("v_star", v_star, 0.0, math.inf, low_open=True)
-    alpha = check_range("alpha", alpha, 0.0, 0.5 * math.pi, low_open=True, unit="rad")
-    s = check_range("s", s, 0.0, 1.0, low_open=True)
-    omega_b = steady_state(s, kappa_star, psi).omega_b if exact else compact_steady_rates(s, kappa_star, psi)[1]
-    return v_star * math.sin(alpha) * omega_b / (3.0 * s)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from .integrate import Event
+from dynamics.integrate import Event
 
 __all__ = ["GAP_FLOOR", "MAX_REYNOLDS", "MAX_TURNS", "gap_floor_event", "reynolds_event", "runaway_event"]
 

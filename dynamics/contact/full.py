@@ -10,8 +10,8 @@ centre. In (2.1)-(2.3) the contact force adds to the fluid force,
 f_eps -> f_eps - N, f_chi -> f_chi + F, and its torque about A to the fluid's,
 T_a -> T_a + a F. (2.4), the angular momentum of the whole device about its
 contact with the plane, holds unchanged: the contact force is internal. So the
-accelerations are those of :func:`dynamics.full.rhs` with these forces added,
-through the same linear map :func:`dynamics.full.force_response`; nothing of
+accelerations are those of :func:`dynamics.equations.full.rhs` with these forces added,
+through the same linear map :func:`dynamics.equations.full.force_response`; nothing of
 (2.1)-(2.4) is derived twice.
 
 In contact the state is (chi, chi', Omega_a, Omega_b, X_b), eps = eps*, and
@@ -53,7 +53,7 @@ Switching and the impact law
 
 Each phase has a smooth right-hand side and every guard is a terminal event
 located on the dense output, so there is no chattering regularisation and no
-step-size collapse, as in :mod:`dynamics.contact`.
+step-size collapse, as in :mod:`dynamics.contact.reduced`.
 
 The limit delta/a -> 0: section 5
 ---------------------------------
@@ -68,11 +68,11 @@ and (2.4) is (2.11d). Two differences vanish only in the limit: in the full
 model a locked pair turns with a Omega_a = (a + eps*) Omega_b - eps* chi' (exact
 rolling at the contact point), and the impulse on touching conserves the angular
 momentum of (2.4), whereas section 5 lets Omega_a jump to Omega_b
-(see :mod:`dynamics.contact`). Steady states do not depend on the jump; they
+(see :mod:`dynamics.contact.reduced`). Steady states do not depend on the jump; they
 approach (5.6)-(5.11) at O(delta/a) (checked in the tests).
 
 Units. Every phase is integrated in scaled variables, time in tau and the
-state over its typical size (:func:`dynamics.full.typical_scales`), so that one
+state over its typical size (:func:`dynamics.equations.full.typical_scales`), so that one
 scalar absolute tolerance serves all phases.
 """
 
@@ -83,12 +83,18 @@ import math
 import numpy as np
 from scipy.optimize import fsolve
 
+from dynamics.contact.reduced import (
+    FREE,
+    LOCKED,
+    SLIDING,
+    ContactParams,
+    PhaseStart,
+    run_phases,
+)
+from dynamics.equations import full
+from dynamics.equations.forces import ForceModel, evaluate
+from dynamics.integrate import Event
 from lubrication._jit import jit
-
-from . import full
-from .contact import FREE, LOCKED, SLIDING, ContactParams, PhaseStart, run_phases
-from .forcemodels import ForceModel, evaluate
-from .integrate import Event
 
 __all__ = [
     "contact_rates",
@@ -352,11 +358,11 @@ def simulate_full_contact(apparatus, force_model: ForceModel, contact: ContactPa
                           progress: str | None = None) -> dict:
     """Integrate the full model with rough contact from the free state ``y0_free`` over ``t_end`` seconds.
 
-    ``y0_free`` is a state of :mod:`dynamics.full` (SI) with kappa <= kappa*;
+    ``y0_free`` is a state of :mod:`dynamics.equations.full` (SI) with kappa <= kappa*;
     at kappa* the run starts as on touching. ``extra_events(phase)`` returns
     further terminal events of a phase (scaled state, time in tau). Returns the
-    fields of :class:`dynamics.contact.ContactTrajectory` as
-    :func:`dynamics.contact.run_phases` does, times in seconds.
+    fields of :class:`dynamics.contact.reduced.ContactTrajectory` as
+    :func:`dynamics.contact.reduced.run_phases` does, times in seconds.
     """
     sc = _Scaled(apparatus, force_model, contact)
     extra_events = extra_events or (lambda phase: ())
@@ -387,7 +393,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
 
     Solves chi'' = Omega_b' = 0 with, locked, a Omega_a = (a + eps*) Omega_b, or, sliding
     (sigma = sgn(slip)), Omega_a' = 0 too; ``guess`` = (chi, Omega_a, Omega_b) in SI,
-    e.g. the reduced fixed point of :func:`dynamics.contact.steady_state`.
+    e.g. the reduced fixed point of :func:`dynamics.contact.steady.steady_state`.
     """
     p = full.params_array(apparatus)
     model = full.model_arguments(force_model)

@@ -8,10 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
+from dynamics.app.regime import classify
+from dynamics.simulate import Trajectory
 from lubrication.files import save_figure, write_json, write_text
-
-from .regime import classify
-from .simulate import Trajectory
 
 __all__ = ["CSV_COLUMNS", "summary", "trajectory_csv", "write_outputs", "plot_trajectory"]
 

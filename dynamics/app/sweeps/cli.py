@@ -40,9 +40,9 @@ def register(subparsers) -> None:
 
 
 def _run_sweep(args) -> int:
-    from .cli import UsageError
-    from .scene import SceneError
-    from .sweep import SweepError, load_sweep, run_sweep
+    from dynamics.app.cli import UsageError
+    from dynamics.app.sweeps.sweep import SweepError, load_sweep, run_sweep
+    from dynamics.scenes.load import SceneError
 
     try:
         sweep = load_sweep(args.sweep)
@@ -67,9 +67,8 @@ def _draw_map(sweep, csv_path) -> None:
     """``regime_map.png`` in the plane of the first two axes with more than one value, if there are two."""
     import matplotlib.pyplot as plt
 
+    from dynamics.app.sweeps.sweep import plot_regime_map, read_rows
     from lubrication.files import save_figure
-
-    from .sweep import plot_regime_map, read_rows
 
     rows = read_rows(csv_path)
     plane = [a for a in sweep.axes if len({r[a.key] for r in rows}) > 1]

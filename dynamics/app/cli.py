@@ -17,7 +17,7 @@ import time
 from importlib.metadata import entry_points
 from pathlib import Path
 
-from .sweep_cli import register as _add_sweep
+from dynamics.app.sweeps.cli import register as _add_sweep
 
 __all__ = ["UsageError", "main"]
 
@@ -182,9 +182,9 @@ def _run_forces(args) -> int:
 
 
 def _run_auto_forces(args, annulus, motion, fluid) -> int:
-    """``--model auto``: the choice of :func:`dynamics.auto.choose_forces` at this kappa, evaluated."""
-    from .auto import choose_forces
-    from .forcemodels import force_model
+    """``--model auto``: the choice of :func:`dynamics.app.auto.choose_forces` at this kappa, evaluated."""
+    from dynamics.app.auto import choose_forces
+    from dynamics.equations.forces import force_model
 
     choice = choose_forces(args.tolerance, annulus.delta_over_a, annulus.kappa)
     options = dict(choice.options, **({"delta_over_a": annulus.delta_over_a} if choice.model == "stokes" else {}))
@@ -250,9 +250,9 @@ def _add_run(subparsers) -> None:
 
 
 def _run_scene(args) -> int:
-    from .output import write_outputs
-    from .run import run_scene
-    from .scene import SceneError, load_scene, resolved_toml
+    from dynamics.app.output import write_outputs
+    from dynamics.app.run import run_scene
+    from dynamics.scenes.load import SceneError, load_scene, resolved_toml
 
     overrides = list(args.set)
     if args.t_end is not None:

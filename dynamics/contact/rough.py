@@ -1,11 +1,11 @@
-r"""Rough contact on surfaces whose minimum gap varies: :mod:`dynamics.contact` on a moving constraint.
+r"""Rough contact on surfaces whose minimum gap varies: :mod:`dynamics.contact.reduced` on a moving constraint.
 
 The asperities now touch at kappa = kappa*(theta_a, theta_b), the field of
-:mod:`dynamics.roughness`, where theta_a = phi - Theta_a and
+:mod:`dynamics.contact.roughness`, where theta_a = phi - Theta_a and
 theta_b = phi - X_b are the body angles of the surfaces at the line of
 centres. Time is in units of tau and rates in 1/tau, as in
-:mod:`dynamics.reduced`. Every phase evaluates the right-hand side of
-:mod:`dynamics.contact` at the local kappa* and adds what the varying gap
+:mod:`dynamics.equations.reduced`. Every phase evaluates the right-hand side of
+:mod:`dynamics.contact.reduced` at the local kappa* and adds what the varying gap
 changes.
 
 The constraint and its reaction
@@ -25,7 +25,7 @@ the envelope theorem, the derivatives of the true minimum gap equal those of
 the gap on the line of centres. The reaction's components are:
 
 * along e_eps, -N: the normal reaction of (5.1). In units of m'_a g,
-  C_e = N/(m'_a g) as in :mod:`dynamics.contact`;
+  C_e = N/(m'_a g) as in :mod:`dynamics.contact.reduced`;
 * along e_chi, the force Q_chi/eps = N (d kappa*/d theta_a + d kappa*/d theta_b)/kappa.
   This is the tilt of the contact normal by the angle u. It is O(1) against
   f_chi when (1 - kappa*) amplitude / lambda is O(1), so it enters (2.11b);
@@ -44,7 +44,7 @@ A = (2 + kappa^2) zeta / (2 kappa) (kappa, zeta local), the contact equations ar
 
 Here T is the lubrication torque (2.11c) at the actual phi'. Let phi'_0 =
 W + A sin(phi) and T_0 be the uniform contact's values at the local kappa*
-(:func:`dynamics.contact.sliding_rhs`, without friction). T depends on phi'
+(:func:`dynamics.contact.reduced.sliding_rhs`, without friction). T depends on phi'
 only through 3 kappa^2 phi' / (3 (2 + kappa^2) zeta), so
 T = T_0 + C_e P / 2, and (5.2) becomes
 
@@ -74,10 +74,10 @@ locked (Omega_a = Omega_b)
     (2.11d) is unchanged; (5.2) gives the friction that keeps D = 0,
     C_lock = C_lock,0 + tau, where C_lock,0 is the uniform contact's (5.4)
     at the local kappa*. The phase holds while |C_lock| < C_e tan(psi).
-    The Filippov argument of :mod:`dynamics.contact` carries over:
+    The Filippov argument of :mod:`dynamics.contact.reduced` carries over:
     D' = (1 + 2 mu_)/(mu_ Upsilon) (C_x - C_lock) at D = 0.
 
-Switching: the events of :mod:`dynamics.contact`, on the moving constraint
+Switching: the events of :mod:`dynamics.contact.reduced`, on the moving constraint
 -------------------------------------------------------------------------
 * free -> contact when r reaches r*(theta_a, theta_b), r - r* rising. The
   constraint moves, so this can happen with cos(phi) > 0 when an asperity
@@ -102,12 +102,12 @@ finite at kappa = 0, where phi' is not. S is dropped on leaving the phase.
 Limits and numerics
 -------------------
 With amplitude 0, k_a = k_b = 0 exactly. Every phase's right-hand side is
-then that of :mod:`dynamics.contact` to the last bit, and so are the guards
+then that of :mod:`dynamics.contact.reduced` to the last bit, and so are the guards
 and resets. The trajectories differ only by the integrator: its error
 control sees the extra passive components (Theta_a, S), and its Jacobian
 differs (below).
 
-The free phase has the analytic Jacobian of :mod:`dynamics.reduced`. S is
+The free phase has the analytic Jacobian of :mod:`dynamics.equations.reduced`. S is
 left out of it, because nothing depends on S. In contact, the solver forms
 the Jacobian by finite differences. C_e depends on D through theta_a' -
 theta_b', with dC_e/dD = (k_b - k_a)/(2 zeta^3 (1 + A P^2/(kappa zeta^3))),
@@ -140,9 +140,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lubrication.geometry import check_finite, check_range
-
-from .contact import (
+from dynamics.contact.reduced import (
     FREE,
     LOCKED,
     MAX_SWITCHES,
@@ -155,12 +153,18 @@ from .contact import (
     locked_rhs,
     run_phases,
     sliding_rhs,
-    steady_state,
 )
-from .integrate import Event
-from .reduced import ReducedParams, initial_state, reduced_jacobian, reduced_rhs
-from .roughness import LocalGap, RoughContact
-from .validity import MAX_TURNS, runaway_event
+from dynamics.contact.roughness import LocalGap, RoughContact
+from dynamics.contact.steady import steady_state
+from dynamics.equations.limits import MAX_TURNS, runaway_event
+from dynamics.equations.reduced import (
+    ReducedParams,
+    initial_state,
+    reduced_jacobian,
+    reduced_rhs,
+)
+from dynamics.integrate import Event
+from lubrication.geometry import check_finite, check_range
 
 __all__ = [
     "ContactState",
@@ -182,7 +186,7 @@ _X_B = {FREE: 4, SLIDING: 3, LOCKED: 2}
 
 @dataclass(frozen=True, kw_only=True)
 class RoughTrajectory(ContactTrajectory):
-    """A :class:`dynamics.contact.ContactTrajectory` on rough surfaces, kappa = local kappa* in contact.
+    """A :class:`dynamics.contact.reduced.ContactTrajectory` on rough surfaces, kappa = local kappa* in contact.
 
     Attributes
     ----------
@@ -255,7 +259,7 @@ def free_rhs(t: float, y, params: ReducedParams, rough: RoughContact) -> np.ndar
     """Free flight (2.11) with Theta_a' = Omega_a and the roughness seen, S' = kappa^2 r*'.
 
     ``y`` = (xi, eta, Omega_a, Omega_b, X_b, Theta_a, S). kappa^2 phi' =
-    (eta xi' - xi eta')/rho^2 is regular at kappa = 0 (:mod:`dynamics.reduced`).
+    (eta xi' - xi eta')/rho^2 is regular at kappa = 0 (:mod:`dynamics.equations.reduced`).
     """
     f = reduced_rhs(t, y[:5], params)
     xi, eta = y[0], y[1]
@@ -382,7 +386,7 @@ def simulate_rough_contact(params: ReducedParams, rough: RoughContact, t_end: fl
     ----------
     params : ReducedParams
     rough : RoughContact
-        Mean contact, amplitude and the two surfaces (:mod:`dynamics.roughness`).
+        Mean contact, amplitude and the two surfaces (:mod:`dynamics.contact.roughness`).
     t_end : float
         Final time in units of tau, positive.
     kappa0 : float
@@ -393,7 +397,7 @@ def simulate_rough_contact(params: ReducedParams, rough: RoughContact, t_end: fl
     phi0, omega_a0, omega_b0, x_b0 : float
         Initial angle from the upward vertical (rad), rates (1/tau), position (b).
     rtol, atol, method, max_turns, max_steps, max_switches, progress
-        As for :func:`dynamics.contact.simulate_contact`.
+        As for :func:`dynamics.contact.reduced.simulate_contact`.
 
     Returns
     -------

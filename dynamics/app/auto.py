@@ -35,7 +35,7 @@ from lubrication.geometry import check_range
 __all__ = ["Choice", "choose_equations", "choose_forces", "near_contact_kappa", "resolve_model", "study"]
 
 #: Force models of the study and the name the equations of motion know them by
-#: (:func:`dynamics.forcemodels.force_model`).
+#: (:func:`dynamics.equations.forces.force_model`).
 _ADAPTER = {"closed-form": "closed-form", "reynolds": "reynolds", "stokes-table": "stokes"}
 
 
@@ -49,7 +49,7 @@ class Choice:
         Force model ("closed-form", "reynolds", "stokes": the tabulated Stokes
         resistance) or equations ("reduced", "full").
     options : dict
-        Options of the force model's adapter (:mod:`dynamics.forcemodels`);
+        Options of the force model's adapter (:mod:`dynamics.equations.forces`);
         a Stokes table also needs the scene's delta/a.
     error : float or None
         The measured error the choice rests on (relative; see the module
@@ -141,7 +141,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
     Returns
     -------
     Choice
-        ``model`` is a :mod:`dynamics.forcemodels` name. Cost is the measured
+        ``model`` is a :mod:`dynamics.equations.forces` name. Cost is the measured
         time of one evaluation from jitted code, the largest over the band.
         Candidates are the models a right-hand side can call: closed forms,
         Reynolds, and the Stokes table with its default (cached) settings; the
@@ -254,7 +254,7 @@ def resolve_model(scene) -> tuple:
 
     Returns
     -------
-    model : dynamics.scene.Model
+    model : dynamics.scenes.load.Model
         With concrete ``equations`` and ``forces`` (and Reynolds ``n``, ``grid``).
     choices : dict
         ``tolerance``, ``delta_over_a``, and for each automatic key

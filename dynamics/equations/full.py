@@ -44,9 +44,8 @@ import math
 
 import numpy as np
 
+from dynamics.equations.forces import ForceModel, evaluate
 from lubrication._jit import jit
-
-from .forcemodels import ForceModel, evaluate
 
 __all__ = [
     "STATE_NAMES",

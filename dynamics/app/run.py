@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .auto import resolve_model
-from .contact import ContactParams
-from .forcemodels import force_model
-from .roughness import RoughContact
-from .scene import Scene, SceneError
-from .simulate import (
+from dynamics.app.auto import resolve_model
+from dynamics.contact.reduced import ContactParams
+from dynamics.contact.roughness import RoughContact
+from dynamics.equations.forces import force_model
+from dynamics.scenes.load import Scene, SceneError
+from dynamics.simulate import (
     Trajectory,
     simulate_contact,
     simulate_full,

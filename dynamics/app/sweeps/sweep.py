@@ -14,7 +14,7 @@ A sweep file is TOML. It names a base scene and the axes along which it varies:
     "initial.phi" = {random = "uniform", low = 0, high = 6.28, num = 100}
 
 An axis key is a dotted scene key, ``section.key``, applied to the base scene as
-an override (:func:`dynamics.scene.parse_scene`). The grid axes (lists and
+an override (:func:`dynamics.scenes.load.parse_scene`). The grid axes (lists and
 ``start/stop/num``) are crossed: the sweep is their Cartesian product. The
 random axes are drawn together, ``num`` joint samples from one generator seeded
 by ``seed`` (so they must agree on ``num``), and these samples are crossed with
@@ -38,7 +38,7 @@ resumed only by the same sweep) and, at the end, the counts and the wall time.
 
 Regimes
 -------
-:func:`classify_point` extends :func:`dynamics.regime.classify` (runaway,
+:func:`classify_point` extends :func:`dynamics.app.regime.classify` (runaway,
 rocking, sedimenting, locked and sliding rolling in contact, transient) by
 "failed": the run raised or failed, and the row says why. The row carries the
 numbers that decided the regime.
@@ -64,11 +64,10 @@ from typing import Any
 
 import numpy as np
 
+from dynamics.app.regime import REGIMES as _CLASSIFIED
+from dynamics.app.regime import classify
+from dynamics.scenes.load import SceneError, parse_scene
 from lubrication.files import write_json
-
-from .regime import REGIMES as _CLASSIFIED
-from .regime import classify
-from .scene import SceneError, parse_scene
 
 __all__ = [
     "CSV_NAME",
@@ -114,7 +113,7 @@ NUMBERS = (
     "reason",  # why the point failed; empty otherwise
 )
 
-# The evidence of dynamics.regime.classify that every row carries.
+# The evidence of dynamics.app.regime.classify that every row carries.
 _EVIDENCE = ("final_kappa", "turns_of_phi_late", "phi_reversals_late", "omega_b_tau_growth_late", "stop_event")
 
 # Points per dask task: large enough that the scheduler's few milliseconds per task
@@ -396,7 +395,7 @@ def classify_point(trajectory) -> tuple[str, dict[str, Any]]:
     """The regime of a trajectory and the numbers that decided it.
 
     A failed or interrupted run is "failed"; otherwise the regime is that of
-    :func:`dynamics.regime.classify` (steady rolling in contact is "locked
+    :func:`dynamics.app.regime.classify` (steady rolling in contact is "locked
     rolling" or "sliding rolling" there).
 
     Returns
@@ -428,7 +427,7 @@ def run_point(base: Mapping[str, Any], point: Mapping[str, Any], source: str = "
     dict
         The axis values, ``point`` (:func:`point_key`) and the keys of :data:`NUMBERS`.
     """
-    from .run import run_scene
+    from dynamics.app.run import run_scene
 
     start = time.perf_counter()
     row = {**point, "point": point_key(point)}

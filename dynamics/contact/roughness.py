@@ -5,8 +5,8 @@ discussion adds that the minimum gap "more probably would be a complicated
 function of the orientations of both" cylinders, and suggests "slight
 stochastic variations in kappa*" (section 6.2: "the minimum gap is not likely to
 be the same all the way around the cylinder surfaces"). This module builds
-that function, kappa*(theta_a, theta_b); :mod:`dynamics.rough_contact` moves
-the contact of :mod:`dynamics.contact` onto it.
+that function, kappa*(theta_a, theta_b); :mod:`dynamics.contact.rough` moves
+the contact of :mod:`dynamics.contact.reduced` onto it.
 
 Kinematics
 ----------
@@ -84,10 +84,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dynamics.contact.reduced import ContactParams
 from lubrication._jit import jit
 from lubrication.geometry import check_range
-
-from .contact import ContactParams
 
 __all__ = ["CLIP_FLOOR", "CLIP_KNEE", "MAX_MODES", "LocalGap", "RoughContact", "SurfaceHeights", "soft_floor"]
 
@@ -234,7 +233,7 @@ class LocalGap(NamedTuple):
 
     @property
     def r_star(self):
-        """The stretched radius r* = kappa*/zeta* of the constraint (see :mod:`dynamics.reduced`)."""
+        """The stretched radius r* = kappa*/zeta* of the constraint (see :mod:`dynamics.equations.reduced`)."""
         return self.kappa / self.zeta
 
 

@@ -63,10 +63,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dynamics.equations.limits import (
+    GAP_FLOOR,
+    MAX_TURNS,
+    gap_floor_event,
+    runaway_event,
+)
+from dynamics.integrate import integrate
 from lubrication.geometry import check_finite, check_range
-
-from .integrate import integrate
-from .validity import GAP_FLOOR, MAX_TURNS, gap_floor_event, runaway_event
 
 __all__ = [
     "ReducedParams",
@@ -292,7 +296,7 @@ def simulate_reduced(params: ReducedParams, t_end: float, kappa0: float, phi0: f
         Implicit scipy solver; the analytic Jacobian is supplied.
     gap_floor : float
         Stop when 1 - kappa falls to this value, in (0, 1); see
-        :mod:`dynamics.validity`. The slow approach (3.9) reaches it after
+        :mod:`dynamics.equations.limits`. The slow approach (3.9) reaches it after
         about 1/sqrt(2 gap_floor (1 - s^2)) tau.
     max_turns : float
         Stop, as a runaway, when the outer cylinder has turned this many times

@@ -1,0 +1,1 @@
+"""Parameter sweeps of scenes on dask: ``snail sweep``."""

@@ -1,0 +1,1 @@
+"""Scenes: TOML files that say what to simulate, read into validated dataclasses."""
