@@ -77,7 +77,7 @@ from benchmarks.publish import RESULTS, publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import forces as forcemodels
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 from lubrication.files import save_figure, write_text
 from lubrication.forces import Resistance, fluid_forces, resistance

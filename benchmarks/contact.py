@@ -27,7 +27,7 @@ from dynamics.apparatus import Apparatus
 from dynamics.contact.reduced import ContactParams, simulate_contact
 from dynamics.equations.forces import closed_form
 from dynamics.equations.reduced import ReducedParams, simulate_reduced
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full, simulate_full_contact
 
 PARAMS = ReducedParams(0.25, 1.0, 1.0)

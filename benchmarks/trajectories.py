@@ -50,7 +50,7 @@ from benchmarks.publish import publish  # noqa: E402
 from benchmarks.reynolds import _machine  # noqa: E402
 from dynamics.equations import full  # noqa: E402
 from dynamics.equations.forces import closed_form  # noqa: E402
-from dynamics.scenes.load import load_scene  # noqa: E402
+from dynamics.scenes import load_scene  # noqa: E402
 from dynamics.simulate import simulate_full, simulate_reduced  # noqa: E402
 
 __all__ = ["run", "plain_rhs", "to_markdown"]

@@ -11,7 +11,7 @@ from dynamics.app.run import run_scene
 from dynamics.apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
 from dynamics.equations.forces import FORCE_MODELS, ForceModel, force_model
 from dynamics.equations.reduced import ReducedParams
-from dynamics.scenes.load import Initial, Scene, SceneError, load_scene, parse_scene
+from dynamics.scenes import Initial, Scene, SceneError, load_scene, parse_scene
 from dynamics.simulate import (
     Trajectory,
     simulate_contact,

@@ -50,6 +50,7 @@ from types import MappingProxyType
 
 from dynamics.equations.reduced import ReducedParams
 from dynamics.equations.special import decay_exponent
+from dynamics.keys import check_fields, key
 from lubrication.geometry import check_finite, check_range
 
 __all__ = ["Apparatus", "STEEL", "ALUMINIUM", "PRESETS", "preset", "STANDARD_GRAVITY"]
@@ -59,6 +60,12 @@ STANDARD_GRAVITY = 9.80665  # m/s^2
 
 def _positive(name: str, value: float, unit: str) -> float:
     return check_range(name, value, 0.0, math.inf, low_open=True, unit=unit)
+
+
+_LENGTH = {"dimension": "[length]", "unit": "m", "low": 0.0, "bounds": "()", "example": "0.8 cm"}
+_MASS = {"dimension": "[mass]", "unit": "kg", "low": 0.0, "bounds": "()", "example": "158 g"}
+_DENSITY = {"dimension": "[mass] / [length] ** 3", "unit": "kg/m^3", "low": 0.0, "bounds": "()",
+            "example": "0.95 g/cm^3"}
 
 
 @dataclass(frozen=True)
@@ -97,37 +104,27 @@ class Apparatus:
         the fluid it displaces.
     """
 
-    a: float
-    b: float
-    length: float
-    m_a: float
-    m_b: float
-    nu: float
-    rho: float
-    alpha: float
-    g: float = STANDARD_GRAVITY
-    m_f_ends: float = 0.0
+    a: float = key(help="inner radius", section="apparatus", **_LENGTH)
+    b: float = key(help="outer radius, > a", section="apparatus", **_LENGTH)
+    length: float = key(help="axial length of the inner cylinder and of the gap", section="apparatus",
+                        **_LENGTH)
+    m_a: float = key(help="mass of the inner (solid) cylinder", section="apparatus", **_MASS)
+    m_b: float = key(help="mass of the outer (thin shell) cylinder", section="apparatus", **_MASS)
+    nu: float = key(help="kinematic viscosity of the fluid", section="fluid", dimension="[length] ** 2 / [time]",
+                    unit="m^2/s", low=0.0, bounds="()", example="200 cSt")
+    rho: float = key(help="density of the fluid", section="fluid", **_DENSITY)
+    alpha: float = key(help="inclination of the plane, positive down the slope", section="incline",
+                       unit="deg", low=-90.0, high=90.0, bounds="()", scale=math.pi / 180.0, example="2.4 deg")
+    g: float = key(STANDARD_GRAVITY, help="gravitational acceleration", section="incline",
+                   dimension="[length] / [time] ** 2", unit="m/s^2", low=0.0, bounds="()", example="9.81 m/s^2")
+    m_f_ends: float = key(0.0, help="fluid outside the gap, carried by the outer cylinder", section="apparatus",
+                          **dict(_MASS, bounds="[)"))
 
     def __post_init__(self):
-        values = {
-            "a": _positive("a", self.a, "m"),
-            "length": _positive("length", self.length, "m"),
-            "m_a": _positive("m_a", self.m_a, "kg"),
-            "m_b": _positive("m_b", self.m_b, "kg"),
-            "nu": _positive("nu", self.nu, "m^2/s"),
-            "rho": _positive("rho", self.rho, "kg/m^3"),
-            "g": _positive("g", self.g, "m/s^2"),
-            "alpha": check_range("alpha", self.alpha, -math.pi / 2, math.pi / 2,
-                                 low_open=True, unit="rad"),
-            "m_f_ends": check_range("m_f_ends", self.m_f_ends, 0.0, math.inf, unit="kg"),
-        }
-        b = check_finite("b", self.b)
-        if not b > values["a"]:
-            msg = f"b must be in (a, inf) = ({values['a']:g}, inf) m (outer radius), got {self.b!r}"
+        check_fields(self)
+        if not self.b > self.a:
+            msg = f"b must be in (a, inf) = ({self.a:g}, inf) m (outer radius), got {self.b!r}"
             raise ValueError(msg)
-        values["b"] = b
-        for name, value in values.items():
-            object.__setattr__(self, name, value)
         # tau and Upsilon carry m'_a = m_a - m''_a: a buoyant inner cylinder
         # has no sedimentation time scale.
         if not self.m_a_reduced > 0.0:

@@ -26,8 +26,8 @@ from dynamics.equations.limits import (
     gap_floor_event,
     reynolds_event,
 )
+from dynamics.initial import Initial
 from dynamics.integrate import Integration, integrate
-from dynamics.scenes.load import Initial
 
 __all__ = ["Initial", "Trajectory", "simulate_contact", "simulate_full", "simulate_full_contact", "simulate_reduced"]
 

@@ -45,13 +45,13 @@ def _kwargs(**overrides):
     ("m_b", -0.047, "m_b must be in (0, inf) kg"),
     ("nu", 0.0, "nu must be in (0, inf) m^2/s"),
     ("rho", -1.0, "rho must be in (0, inf) kg/m^3"),
-    ("alpha", math.pi / 2, "alpha must be in (-1.5708, 1.5708) rad"),
-    ("alpha", -2.0, "alpha must be in (-1.5708, 1.5708) rad"),
+    ("alpha", math.pi / 2, "alpha must be in (-90, 90) deg, got 1.5707963267948966 rad = 90 deg"),
+    ("alpha", -2.0, "alpha must be in (-90, 90) deg"),
     ("g", 0.0, "g must be in (0, inf)"),
     ("m_f_ends", -1e-3, "m_f_ends must be in [0, inf) kg"),
-    ("a", math.nan, "a must be a finite number"),
-    ("nu", math.inf, "nu must be a finite number"),
-    ("alpha", "steep", "alpha must be a finite number"),
+    ("a", math.nan, "a must be in (0, inf) m, got nan"),
+    ("nu", math.inf, "nu must be in (0, inf) m^2/s, got inf"),
+    ("alpha", "steep", "alpha must be in (-90, 90) deg, got 'steep'"),
 ])
 def test_invalid_field_is_named_with_its_range(field, value, words):
     with pytest.raises(ValueError) as info:

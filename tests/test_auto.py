@@ -24,7 +24,7 @@ from dynamics.app.auto import (
     study,
 )
 from dynamics.app.cli import main
-from dynamics.scenes.load import parse_scene
+from dynamics.scenes import parse_scene
 from lubrication.forces import Resistance, resistance
 from lubrication.geometry import Annulus, Fluid
 

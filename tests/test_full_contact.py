@@ -13,7 +13,7 @@ from dynamics.contact import steady as contact_steady
 from dynamics.contact.reduced import ContactParams
 from dynamics.equations import full
 from dynamics.equations.forces import closed_form
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full_contact
 
 FORCES = closed_form()

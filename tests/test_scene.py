@@ -6,7 +6,7 @@ import math
 import pytest
 
 from dynamics.apparatus import STEEL, Apparatus
-from dynamics.scenes.load import (
+from dynamics.scenes import (
     Cavitation,
     Contact,
     Groups,

@@ -55,7 +55,7 @@ import numpy as np
 
 from dynamics.apparatus import preset
 from dynamics.equations.forces import reynolds
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import Trajectory, simulate_full
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import CAVITATION_MODELS, cavitating_pressure

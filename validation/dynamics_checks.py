@@ -109,7 +109,7 @@ from dynamics.equations.special import (
     slow_approach,
     steady_rolling,
 )
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 
 from .checks import Check, absolute, at_most, relative

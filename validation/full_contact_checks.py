@@ -38,7 +38,7 @@ from dynamics.contact.full import steady_full_contact
 from dynamics.contact.reduced import LOCKED, ContactParams
 from dynamics.contact.steady import steady_state
 from dynamics.equations.forces import closed_form, force_model
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import Trajectory, simulate_full_contact
 from lubrication.files import save_figure
 

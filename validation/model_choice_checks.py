@@ -31,7 +31,7 @@ from pathlib import Path
 from dynamics.app.auto import choose_equations, choose_forces
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import forces as forcemodels
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 from lubrication.forces import Resistance, resistance
 from lubrication.geometry import Annulus, Fluid, Motion

@@ -35,7 +35,7 @@ import numpy as np
 from dynamics.app.regime import classify
 from dynamics.apparatus import preset
 from dynamics.equations.forces import closed_form, stokes
-from dynamics.scenes.load import Initial
+from dynamics.scenes import Initial
 from dynamics.simulate import Trajectory, simulate_full
 
 from .checks import Check, absolute

@@ -252,7 +252,7 @@ def _add_run(subparsers) -> None:
 def _run_scene(args) -> int:
     from dynamics.app.output import write_outputs
     from dynamics.app.run import run_scene
-    from dynamics.scenes.load import SceneError, load_scene, resolved_toml
+    from dynamics.scenes import SceneError, load_scene, resolved_toml
 
     overrides = list(args.set)
     if args.t_end is not None:

@@ -8,7 +8,7 @@ from dynamics.app.auto import resolve_model
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact
 from dynamics.equations.forces import force_model
-from dynamics.scenes.load import Scene, SceneError
+from dynamics.scenes import Scene, SceneError
 from dynamics.simulate import (
     Trajectory,
     simulate_contact,

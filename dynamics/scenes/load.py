@@ -1,4 +1,4 @@
-"""Scenes: TOML files that say what to simulate, read into typed and validated dataclasses.
+"""Reading scenes: TOML text in, a validated :class:`~dynamics.scenes.schema.Scene` out.
 
 A scene names the apparatus (or a preset), the fluid, the incline, the initial
 state, the model and the run length (DESIGN.md, "Scenes"). A minimal one:
@@ -23,7 +23,7 @@ or keys, missing values, values of the wrong type or dimension and unphysical
 values all raise :class:`SceneError`. The message names the key as
 ``section.key`` and gives the value and the allowed range. Validation is
 complete when :func:`load_scene` returns, so nothing runs on a bad scene.
-Defaults live in the dataclasses below, one commented field each.
+Defaults, units, ranges and help live in :mod:`dynamics.scenes.schema`.
 
 Physical and dimensionless scenes
 ---------------------------------
@@ -59,345 +59,53 @@ import math
 import os
 import tomllib
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
-from decimal import Decimal
 from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
-import pint
-
 from dynamics.apparatus import PRESETS, Apparatus
-from dynamics.equations.reduced import ReducedParams
-from lubrication.reynolds import GRIDS, MAX_CELLS, MIN_CELLS
+from dynamics.keys import Key, field_key
+from dynamics.scenes.schema import (
+    ALTERNATIVES,
+    SECTIONS,
+    Cavitation,
+    Contact,
+    Groups,
+    Initial,
+    Model,
+    Run,
+    Scene,
+    SceneError,
+    field_of,
+    spec,
+)
+from dynamics.scenes.units import UnitError, to_si
 
-__all__ = [
-    "CAVITATION_MODELS",
-    "EQUATIONS",
-    "FORCES",
-    "SECTIONS",
-    "Cavitation",
-    "Contact",
-    "Groups",
-    "Initial",
-    "Model",
-    "Run",
-    "Scene",
-    "SceneError",
-    "load_scene",
-    "parse_scene",
-    "resolved_toml",
-]
+__all__ = ["load_scene", "parse_scene", "resolved_toml"]
 
-EQUATIONS = ("full", "reduced", "auto")
-FORCES = ("closed-form", "reynolds", "stokes", "auto")
-CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
-
-# Decimal magnitudes: decimal unit factors (cSt, g/cm^3) convert exactly, where
-# binary floats would give 200 cSt = 2.0000000000000004e-4 m^2/s.
-_UREG = pint.UnitRegistry(non_int_type=Decimal)
-
-
-class SceneError(ValueError):
-    """A scene that cannot run; the message names the key, the value and the allowed range."""
-
-
-# -- the resolved scene ------------------------------------------------------
-
-@dataclass(frozen=True)
-class Groups:
-    """The groups (2.12) of the reduced model and the gap ratio, all dimensionless."""
-
-    s: float  # slope group (a sin(alpha)/delta)(M/m'_a), finite
-    upsilon: float  # Upsilon = g delta^3 m_a m'_a / (144 nu^2 m''_a^2), > 0
-    mu_ratio: float  # the paper's mass ratio mu = (M + m_b)/m_a (TOML key groups.mu), > 0
-    delta_over_a: float = 0.0  # gap ratio (b - a)/a, >= 0; 0 is the reduced model's limit
-
-    @classmethod
-    def from_apparatus(cls, apparatus: Apparatus) -> Groups:
-        """The groups of a physical apparatus."""
-        return cls(s=apparatus.s, upsilon=apparatus.upsilon, mu_ratio=apparatus.mu_ratio,
-                   delta_over_a=apparatus.delta_over_a)
-
-    @property
-    def reduced_params(self) -> ReducedParams:
-        """(s, Upsilon, mu_) as the reduced model (2.11) takes them."""
-        return ReducedParams(s=self.s, upsilon=self.upsilon, mu_ratio=self.mu_ratio)
-
-
-@dataclass(frozen=True)
-class Initial:
-    """The initial state; rates per second, or per tau in a dimensionless scene.
-
-    Angles and spins are clockwise, as in the paper's figure 1.
-    """
-
-    kappa: float = 0.0  # eccentricity eps/delta, in [0, 1) (dimensionless)
-    phi: float = 0.0  # angle of the line of centres B->A from the upward vertical (rad)
-    kappa_dot: float = 0.0  # d kappa/dt (1/s, or 1/tau)
-    phi_dot: float = 0.0  # d phi/dt (rad/s, or rad/tau)
-    omega_a: float = 0.0  # spin Omega_a of the inner cylinder (rad/s, or rad/tau)
-    omega_b: float = 0.0  # spin Omega_b of the outer cylinder, X_b' = b Omega_b (rad/s, or rad/tau)
-
-
-@dataclass(frozen=True)
-class Model:
-    """What to model: the equations of motion and the fluid forces in them.
-
-    ``n`` and ``grid`` configure the Reynolds solver; on the Sommerfeld grid
-    its thin-gap forces are exact from n = 8.
-    """
-
-    equations: str = "full"  # "full" (2.1)-(2.4), "reduced" (2.11) or "auto"
-    forces: str = "closed-form"  # "closed-form" (2.5)-(2.7), "reynolds", "stokes" or "auto"
-    tolerance: float = 0.01  # relative error "auto" equations and forces may accept (measured), in (0, 1)
-    n: int = 16  # Reynolds: cells around the gap, >= 8
-    grid: str = "sommerfeld"  # Reynolds: uniform in the Sommerfeld angle or in theta ("uniform")
-
-
-@dataclass(frozen=True)
-class Contact:
-    """Rough contact (section 5): asperities stop the approach at kappa = kappa_star.
-
-    A scene gives the minimum gap as ``sigma`` (a length) or ``kappa_star``,
-    and friction as the physical ``friction_angle`` psi_hat or the scaled
-    ``psi``, tan psi = (a/delta) tan psi_hat; both are resolved here. A rough
-    surface lets the minimum gap vary along the surface at random.
-    """
-
-    kappa_star: float  # eccentricity at which the asperities touch, 1 - sigma/delta, in (0, 1)
-    psi: float = 0.0  # scaled friction angle, in [0, pi/2) (rad)
-    roughness_amplitude: float = 0.0  # std of sigma along the surface over its mean, in [0, 1)
-    roughness_correlation: float | None = None  # correlation length as a distance rolled (m, or b)
-    seed: int = 0  # seed of the random roughness: the same seed gives the same surface
-
-
-@dataclass(frozen=True)
-class Cavitation:
-    """A cavitation model for the film pressure; without this section the film is full.
-
-    ``model`` is "half-sommerfeld", "swift-stieber" or "jfo" (the mass-conserving
-    Jakobsson-Floberg-Olsson model).
-    """
-
-    model: str  # the cavitation model, one of CAVITATION_MODELS
-    p_cav: float = 0.0  # the film pressure may not fall below it (Pa, absolute)
-    p_ref: float = 101325.0  # ambient pressure, which fixes the film's free constant (Pa, absolute)
-
-
-@dataclass(frozen=True)
-class Run:
-    """How long to integrate and how accurately."""
-
-    t_end: float  # duration (s; in units of tau in a dimensionless scene), > 0
-    rtol: float = 1e-8  # relative tolerance of the integrator, in (0, 0.1]
-
-
-@dataclass(frozen=True)
-class Scene:
-    """A validated scene. Build it with :func:`load_scene` or :func:`parse_scene`.
-
-    Attributes
-    ----------
-    apparatus : Apparatus or None
-        The device (SI). None for a dimensionless ``[groups]`` scene of the
-        reduced model.
-    groups : Groups
-        s, Upsilon, mu_ and delta/a. They are derived from the apparatus when
-        there is one.
-    initial : Initial
-        SI, or in units of tau when :attr:`dimensionless`.
-    model : Model
-    contact : Contact or None
-        None when the scene has no ``[contact]`` section, and then there is no
-        contact machinery.
-    cavitation : Cavitation or None
-        None when the scene has no ``[cavitation]`` section, and then the film
-        is full.
-    run : Run
-        ``t_end`` in s, or in tau when :attr:`dimensionless`.
-    source : str
-        Where the scene was read from. It is not compared, so that a scene
-        equals its resolved copy.
-    """
-
-    apparatus: Apparatus | None
-    groups: Groups
-    initial: Initial
-    model: Model
-    contact: Contact | None
-    cavitation: Cavitation | None
-    run: Run
-    source: str = field(default="<string>", compare=False)
-
-    @property
-    def dimensionless(self) -> bool:
-        """True for a ``[groups]`` scene without an apparatus: times in tau, rates in 1/tau."""
-        return self.apparatus is None
-
-    @property
-    def tau(self) -> float:
-        """The time scale (2.9) in s, or 1 in a dimensionless scene."""
-        return 1.0 if self.apparatus is None else self.apparatus.tau
-
-    @property
-    def t_end_tau(self) -> float:
-        """The run length in units of tau."""
-        return self.run.t_end / self.tau
-
-
-# -- what each key accepts -----------------------------------------------------
-
-@dataclass(frozen=True)
-class _Key:
-    """How one scene key is read: a quantity (the default), an integer or a choice."""
-
-    dimension: str = "[]"  # pint dimensionality of a quantity
-    unit: str = ""  # unit of the range in messages; SI except angles (deg)
-    low: float = -math.inf
-    high: float = math.inf
-    bounds: str = "[]"  # which ends of the range are included: "[]", "[)", "(]" or "()"
-    scale: float = 1.0  # SI value of one `unit`: pi/180 for angles shown in deg
-    example: str = ""  # a string value the key accepts, for messages
-    reduced_unit: str = ""  # unit in a dimensionless scene, where the value is a plain number
-    choices: tuple[str, ...] = ()  # the allowed strings of a choice
-    integer: bool = False  # an integer rather than a quantity
-
-    def allowed(self) -> str:
-        """The allowed values: "in [0, 1)", "in (0, inf) m" or "one of 'full', 'reduced'"."""
-        if self.choices:
-            return "one of " + ", ".join(repr(c) for c in self.choices)
-        number = str if self.integer else "{:g}".format
-        low = "-inf" if self.low == -math.inf else number(self.low)
-        high = "inf" if self.high == math.inf else number(self.high)
-        left = "(" if self.low == -math.inf else self.bounds[0]
-        right = ")" if self.high == math.inf else self.bounds[1]
-        unit = f" {self.unit}" if self.unit else ""
-        return f"in {left}{low}, {high}{right}{unit}"
-
-    def contains(self, x: float) -> bool:
-        above = x > self.low if self.bounds[0] == "(" else x >= self.low
-        below = x < self.high if self.bounds[1] == ")" else x <= self.high
-        return math.isfinite(x) and above and below
-
-    def expected(self) -> str:
-        if self.dimension != "[]":
-            return f"the dimension {self.dimension} (e.g. {self.example!r})"
-        if self.scale != 1.0:
-            return f"an angle: a number in rad or a string such as {self.example!r}"
-        return "a plain number" + (f" in {self.unit}" if self.unit else "")
-
-    def in_tau(self) -> _Key:
-        """This key in a dimensionless scene: a plain number in units of tau and b."""
-        return dataclasses.replace(self, dimension="[]", unit=self.reduced_unit, example="",
-                                   reduced_unit="")
-
-
-_DEG = math.pi / 180.0
-_LENGTH = _Key("[length]", "m", 0.0, bounds="()", example="0.8 cm")
-_MASS = _Key("[mass]", "kg", 0.0, bounds="()", example="158 g")
-_DENSITY = _Key("[mass] / [length] ** 3", "kg/m^3", 0.0, bounds="()", example="0.95 g/cm^3")
-_SPIN = _Key("1 / [time]", "rad/s", example="1 rad/s", reduced_unit="rad/tau")
-_FRICTION = _Key(unit="deg", low=0.0, high=90.0, bounds="[)", scale=_DEG, example="5 deg")
-_POSITIVE = _Key(low=0.0, bounds="()")
-
-_KEYS: dict[str, dict[str, _Key]] = {
-    "apparatus": {
-        "preset": _Key(choices=tuple(PRESETS)),
-        "a": _LENGTH,
-        "b": _LENGTH,
-        "length": _LENGTH,
-        "m_a": _MASS,
-        "rho_a": _DENSITY,
-        "m_b": _MASS,
-        "m_f_ends": dataclasses.replace(_MASS, bounds="[)"),
-    },
-    "fluid": {
-        "nu": _Key("[length] ** 2 / [time]", "m^2/s", 0.0, bounds="()", example="200 cSt"),
-        "rho": _DENSITY,
-    },
-    "incline": {
-        "alpha": _Key(unit="deg", low=-90.0, high=90.0, bounds="()", scale=_DEG, example="2.4 deg"),
-        "g": _Key("[length] / [time] ** 2", "m/s^2", 0.0, bounds="()", example="9.81 m/s^2"),
-    },
-    "groups": {
-        "s": _Key(),
-        "upsilon": _POSITIVE,
-        "mu": _POSITIVE,
-        "delta_over_a": _Key(low=0.0, bounds="[)"),
-    },
-    "initial": {
-        "kappa": _Key(low=0.0, high=1.0, bounds="[)"),
-        "phi": _Key(unit="deg", scale=_DEG, example="30 deg"),
-        "kappa_dot": _Key("1 / [time]", "1/s", example="0.1 / s", reduced_unit="1/tau"),
-        "phi_dot": _SPIN,
-        "omega_a": _SPIN,
-        "omega_b": _SPIN,
-    },
-    "model": {
-        "equations": _Key(choices=EQUATIONS),
-        "forces": _Key(choices=FORCES),
-        "tolerance": _Key(low=0.0, high=1.0, bounds="()"),
-        "n": _Key(low=MIN_CELLS, high=MAX_CELLS, integer=True),
-        "grid": _Key(choices=GRIDS),
-    },
-    "contact": {
-        "sigma": dataclasses.replace(_LENGTH, example="50 um"),
-        "kappa_star": _Key(low=0.0, high=1.0, bounds="()"),
-        "friction_angle": _FRICTION,
-        "psi": _FRICTION,
-        "roughness_amplitude": _Key(low=0.0, high=1.0, bounds="[)"),
-        "roughness_correlation": dataclasses.replace(_LENGTH, example="1 mm", reduced_unit="b"),
-        "seed": _Key(low=0, integer=True),
-    },
-    "cavitation": {
-        "model": _Key(choices=CAVITATION_MODELS),
-        "p_cav": _Key("[pressure]", "Pa", 0.0, example="0.1 atm"),
-        "p_ref": _Key("[pressure]", "Pa", 0.0, bounds="()", example="1 atm"),
-    },
-    "run": {
-        "t_end": _Key("[time]", "s", 0.0, bounds="()", example="30 s"),
-        "t_end_tau": _Key(unit="tau", low=0.0, bounds="()"),
-        "rtol": _Key(low=0.0, high=0.1, bounds="(]"),
-    },
-}
-SECTIONS = tuple(_KEYS)
-
-# Keys that say the same thing two ways: a scene gives one of each pair, and an
-# override of one replaces the other.
-_ALTERNATIVES = (("apparatus", "m_a", "rho_a"), ("contact", "sigma", "kappa_star"),
-                 ("contact", "friction_angle", "psi"), ("run", "t_end", "t_end_tau"))
-_OTHER = {(s, k1): k2 for s, a, b in _ALTERNATIVES for k1, k2 in ((a, b), (b, a))}
+_OTHER = {(s, k1): k2 for s, a, b in ALTERNATIVES for k1, k2 in ((a, b), (b, a))}
 
 # The section of each Apparatus field; the TOML key is the field's name.
-_APPARATUS_SECTION = {"a": "apparatus", "b": "apparatus", "length": "apparatus",
-                      "m_a": "apparatus", "m_b": "apparatus", "m_f_ends": "apparatus",
-                      "nu": "fluid", "rho": "fluid", "alpha": "incline", "g": "incline"}
+_APPARATUS_SECTION = {f.name: field_key(f).section for f in dataclasses.fields(Apparatus)}
 _PHYSICAL = ("apparatus", "fluid", "incline")
-_GROUPS_KEY = {"s": "groups.s", "upsilon": "groups.upsilon", "mu_ratio": "groups.mu",
-               "delta_over_a": "groups.delta_over_a"}
+_GROUPS_KEY = {field_of("groups", k): f"groups.{k}" for k in SECTIONS["groups"]}
 
 
 # -- reading values --------------------------------------------------------------
 
-def _si(name: str, text: str, key: _Key) -> float:
+def _si(name: str, text: str, key: Key) -> float:
     """A string quantity in SI base units, after checking its dimension."""
     try:
-        quantity = _UREG.Quantity(text)
-    # pint's parser raises many types (PintError, TokenError, AssertionError, ValueError).
-    except Exception as err:  # noqa: BLE001
-        msg = (f"{name} = {text!r} is not a quantity pint can read ({err}); "
-               f"expected {key.expected()}, {key.allowed()}")
+        return to_si(text, key.dimension)
+    except UnitError as err:
+        msg = f"{name} = {text!r} {err}; expected {key.expected()}, {key.allowed()}"
         raise SceneError(msg) from err
-    if not quantity.check(key.dimension):
-        msg = (f"{name} = {text!r} has the unit {quantity.units} ({quantity.dimensionality}); "
-               f"expected {key.expected()}, {key.allowed()}")
-        raise SceneError(msg)
-    return float(quantity.to_base_units().magnitude)
 
 
-def _value(name: str, raw: Any, key: _Key) -> Any:
+def _value(name: str, raw: Any, key: Key) -> Any:
     """The value of key ``name`` given as ``raw``: converted to SI and checked against its range."""
+    if key.none and raw == key.none:
+        return None
     if key.choices:
         if not isinstance(raw, str) or raw not in key.choices:
             msg = f"{name} must be {key.allowed()}, got {raw!r}"
@@ -425,34 +133,28 @@ def _value(name: str, raw: Any, key: _Key) -> Any:
     return value
 
 
-def _spec(name: str) -> _Key:
-    """The rules of key ``name``, "section.key"."""
-    section, key = name.split(".")
-    return _KEYS[section][key]
-
-
 def _unknown_section(name: str) -> SceneError:
     allowed = ", ".join(f"[{s}]" for s in SECTIONS)
     return SceneError(f"unknown section [{name}]; allowed sections: {allowed}")
 
 
 def _not_a_table(section: str, table: Any) -> SceneError:
-    keys = ", ".join(_KEYS[section])
+    keys = ", ".join(SECTIONS[section])
     return SceneError(f"[{section}] must be a table of keys ({keys}), got {table!r}")
 
 
 def _check_key(section: str, key: str) -> None:
-    if section not in _KEYS:
+    if section not in SECTIONS:
         raise _unknown_section(section)
-    if key not in _KEYS[section]:
-        keys = ", ".join(_KEYS[section])
+    if key not in SECTIONS[section]:
+        keys = ", ".join(SECTIONS[section])
         msg = f"unknown key {section}.{key}; allowed keys in [{section}]: {keys}"
         raise SceneError(msg)
 
 
 def _check_names(raw: Mapping[str, Any]) -> None:
     for section, table in raw.items():
-        if section not in _KEYS:
+        if section not in SECTIONS:
             raise _unknown_section(section)
         if not isinstance(table, Mapping):
             raise _not_a_table(section, table)
@@ -464,7 +166,7 @@ def _read(raw: Mapping[str, Any], section: str, dimensionless: bool = False) -> 
     """The keys given in ``[section]``, converted to SI and checked against their ranges."""
     values = {}
     for key, given in raw.get(section, {}).items():
-        spec = _KEYS[section][key]
+        spec = SECTIONS[section][key]
         if dimensionless and spec.reduced_unit:
             spec = spec.in_tau()
         values[key] = _value(f"{section}.{key}", given, spec)
@@ -474,7 +176,7 @@ def _read(raw: Mapping[str, Any], section: str, dimensionless: bool = False) -> 
 def _missing(names: Iterable[str], why: str) -> SceneError:
     """An error for the missing keys ``names`` ("section.key"), with their ranges."""
     names = list(names)
-    ranges = "; ".join(f"{n} {_spec(n).allowed()}" for n in names)
+    ranges = "; ".join(f"{n} {spec(n).allowed()}" for n in names)
     verb = "is" if len(names) == 1 else "are"
     return SceneError(f"{', '.join(names)} {verb} missing: {why} ({ranges})")
 
@@ -489,7 +191,7 @@ def _either(values: Mapping[str, Any], section: str, first: str, second: str,
     one, other = f"{section}.{first}", f"{section}.{second}"
     if len(given) == 2:
         msg = (f"{one} and {other} say the same thing: give one, not both ({first} "
-               f"{_spec(one).allowed()}, {second} {_spec(other).allowed()})")
+               f"{spec(one).allowed()}, {second} {spec(other).allowed()})")
         raise SceneError(msg)
     if not given and required:
         raise _missing([one], f"{required}; give {one} or {other}")
@@ -518,7 +220,7 @@ def _flat(raw: Mapping[str, Any]) -> dict[str, Any]:
 def _physical_apparatus(raw: Mapping[str, Any]) -> Apparatus:
     if not any(s in raw for s in _PHYSICAL):
         msg = ("apparatus.preset is missing: a scene needs [apparatus] (a preset, "
-               f"{_spec('apparatus.preset').allowed()}, or a, b, length, m_a, m_b), [fluid] and "
+               f"{spec('apparatus.preset').allowed()}, or a, b, length, m_a, m_b), [fluid] and "
                "[incline]; or else [groups] (s, upsilon, mu)")
         raise SceneError(msg)
     given = {s: _read(raw, s) for s in _PHYSICAL}
@@ -608,7 +310,7 @@ def _contact(raw: Mapping[str, Any], apparatus: Apparatus | None, groups: Groups
     if gap == "sigma":
         if apparatus is None:
             msg = ("contact.sigma is a length, but this [groups] scene is dimensionless (no apparatus): "
-                   f"give contact.kappa_star = 1 - sigma/delta, {_spec('contact.kappa_star').allowed()}")
+                   f"give contact.kappa_star = 1 - sigma/delta, {spec('contact.kappa_star').allowed()}")
             raise SceneError(msg)
         sigma = values.pop("sigma")
         if not sigma < apparatus.delta:
@@ -620,7 +322,7 @@ def _contact(raw: Mapping[str, Any], apparatus: Apparatus | None, groups: Groups
         if groups.delta_over_a == 0.0:
             msg = ("contact.friction_angle is scaled by a/delta (tan psi = (a/delta) tan "
                    "friction_angle), but this scene has groups.delta_over_a = 0: give contact.psi "
-                   f"{_spec('contact.psi').allowed()}, or groups.delta_over_a > 0")
+                   f"{spec('contact.psi').allowed()}, or groups.delta_over_a > 0")
             raise SceneError(msg)
         values["psi"] = math.atan(math.tan(values.pop("friction_angle")) / groups.delta_over_a)
     contact = Contact(**values)
@@ -655,7 +357,7 @@ def _run(raw: Mapping[str, Any], apparatus: Apparatus | None) -> Run:
         if given == "t_end":
             msg = (f"run.t_end is in seconds, but this [groups] scene for the reduced model is "
                    f"dimensionless (no apparatus, times in tau): give run.t_end_tau "
-                   f"{_spec('run.t_end_tau').allowed()}; got run.t_end = {raw['run']['t_end']!r}")
+                   f"{spec('run.t_end_tau').allowed()}; got run.t_end = {raw['run']['t_end']!r}")
             raise SceneError(msg)
         values["t_end"] = values.pop("t_end_tau")
     elif given == "t_end_tau":
@@ -814,5 +516,11 @@ def resolved_toml(scene: Scene) -> str:
              else "SI units, angles in rad")
     lines = [f"# Scene {json.dumps(scene.source)}, fully resolved ({units})."]
     for name, table in sections.items():
-        lines += ["", f"[{name}]"] + [f"{key} = {_toml_value(value)}" for key, value in table.items()]
+        lines += ["", f"[{name}]"]
+        for key_name, value in table.items():
+            rule = SECTIONS[name][key_name]
+            unit = rule.reduced_unit if scene.dimensionless and rule.reduced_unit else rule.unit
+            unit = "rad" if rule.scale != 1.0 else unit  # angles are written in radians
+            note = f"  # {rule.help}" + (f" ({unit})" if unit else "")
+            lines.append(f"{key_name} = {_toml_value(value)}{note}")
     return "\n".join(lines) + "\n"

@@ -42,7 +42,7 @@ def register(subparsers) -> None:
 def _run_sweep(args) -> int:
     from dynamics.app.cli import UsageError
     from dynamics.app.sweeps.sweep import SweepError, load_sweep, run_sweep
-    from dynamics.scenes.load import SceneError
+    from dynamics.scenes import SceneError
 
     try:
         sweep = load_sweep(args.sweep)

@@ -66,7 +66,7 @@ import numpy as np
 
 from dynamics.app.regime import REGIMES as _CLASSIFIED
 from dynamics.app.regime import classify
-from dynamics.scenes.load import SceneError, parse_scene
+from dynamics.scenes import SceneError, parse_scene
 from lubrication.files import write_json
 
 __all__ = [

@@ -1,0 +1,258 @@
+"""The scene schema: every section, every key, its unit, range and help, stated once.
+
+The sections are dataclasses whose fields carry a :class:`dynamics.keys.Key`
+(:func:`dynamics.keys.key`): the scene reader (:mod:`dynamics.scenes.load`)
+converts and checks TOML values with it, the dataclasses check themselves with
+it when built from Python, the resolved scene writes its help as comments, and
+the documentation's scene reference is generated from :data:`SECTIONS`. Keys a
+scene may give instead of a field (``apparatus.preset``, ``apparatus.rho_a``,
+``contact.sigma``, ``contact.friction_angle``, ``run.t_end_tau``) are listed in
+:data:`ALTERNATIVE_KEYS` next to the field they stand for.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+from dynamics.apparatus import PRESETS, Apparatus
+from dynamics.equations.reduced import ReducedParams
+from dynamics.initial import Initial
+from dynamics.keys import Key, check_fields, field_key, key
+from lubrication.reynolds import GRIDS, MAX_CELLS, MIN_CELLS
+
+__all__ = [
+    "ALTERNATIVES",
+    "ALTERNATIVE_KEYS",
+    "CAVITATION_MODELS",
+    "EQUATIONS",
+    "FORCES",
+    "SECTIONS",
+    "Cavitation",
+    "Contact",
+    "Groups",
+    "Initial",
+    "Model",
+    "Run",
+    "Scene",
+    "SceneError",
+    "field_of",
+    "spec",
+]
+
+EQUATIONS = ("full", "reduced", "auto")
+FORCES = ("closed-form", "reynolds", "stokes", "auto")
+CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
+
+_DEG = math.pi / 180.0
+_FRICTION = {"unit": "deg", "low": 0.0, "high": 90.0, "bounds": "[)", "scale": _DEG, "example": "5 deg"}
+
+
+class SceneError(ValueError):
+    """A scene that cannot run; the message names the key, the value and the allowed range."""
+
+
+@dataclass(frozen=True)
+class Groups:
+    """The groups (2.12) of the reduced model and the gap ratio, all dimensionless."""
+
+    s: float = key(help="slope group (a sin(alpha)/delta)(M/m'_a)")
+    upsilon: float = key(help="Upsilon = g delta^3 m_a m'_a / (144 nu^2 m''_a^2), inertia over lubrication",
+                         low=0.0, bounds="()")
+    mu_ratio: float = key(help="the paper's mass ratio mu = (M + m_b)/m_a", low=0.0, bounds="()", toml="mu")
+    delta_over_a: float = key(0.0, help="gap ratio (b - a)/a; 0 is the reduced model's limit", low=0.0,
+                              bounds="[)")
+
+    def __post_init__(self):
+        check_fields(self)
+
+    @classmethod
+    def from_apparatus(cls, apparatus: Apparatus) -> Groups:
+        """The groups of a physical apparatus."""
+        return cls(s=apparatus.s, upsilon=apparatus.upsilon, mu_ratio=apparatus.mu_ratio,
+                   delta_over_a=apparatus.delta_over_a)
+
+    @property
+    def reduced_params(self) -> ReducedParams:
+        """(s, Upsilon, mu_) as the reduced model (2.11) takes them."""
+        return ReducedParams(s=self.s, upsilon=self.upsilon, mu_ratio=self.mu_ratio)
+
+
+@dataclass(frozen=True)
+class Model:
+    """What to model: the equations of motion and the fluid forces in them."""
+
+    equations: str = key("full", help="'full' (2.1)-(2.4), 'reduced' (2.11), or 'auto' (the cheapest that "
+                                      "meets model.tolerance)", choices=EQUATIONS)
+    forces: str = key("closed-form", help="'closed-form' (2.5)-(2.7), 'reynolds' (the Reynolds solver), "
+                                          "'stokes' (finite elements, tabulated) or 'auto'", choices=FORCES)
+    tolerance: float = key(0.01, help="relative error 'auto' may accept (measured)", low=0.0, high=1.0,
+                           bounds="()")
+    n: int = key(16, help="Reynolds solver: cells around the gap (exact thin-gap forces from 8)",
+                 low=MIN_CELLS, high=MAX_CELLS, integer=True)
+    grid: str = key("sommerfeld", help="Reynolds solver: grid uniform in the Sommerfeld angle or in theta",
+                    choices=GRIDS)
+
+    def __post_init__(self):
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Rough contact (section 5): asperities stop the approach at kappa = kappa_star.
+
+    A scene gives the minimum gap as ``sigma`` (a length) or ``kappa_star``,
+    and friction as the physical ``friction_angle`` psi_hat or the scaled
+    ``psi``, tan psi = (a/delta) tan psi_hat; both are resolved to the fields.
+    """
+
+    kappa_star: float = key(help="eccentricity at which the asperities touch, 1 - sigma/delta", low=0.0,
+                            high=1.0, bounds="()")
+    psi: float = key(0.0, help="scaled friction angle, tan(psi) = (a/delta) tan(friction_angle)", **_FRICTION)
+    roughness_amplitude: float = key(0.0, help="standard deviation of sigma along the surfaces over its mean",
+                                     low=0.0, high=1.0, bounds="[)")
+    roughness_correlation: float | None = key(None, help="correlation length of the roughness, as a distance "
+                                                         "rolled", dimension="[length]", unit="m", low=0.0,
+                                              bounds="()", example="1 mm", reduced_unit="b", none="none")
+    seed: int = key(0, help="seed of the random roughness: the same seed gives the same surfaces", low=0,
+                    integer=True)
+
+    def __post_init__(self):
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class Cavitation:
+    """A cavitation model for the film pressure; without this section the film is full."""
+
+    model: str = key(help="the cavitation model ('jfo': mass-conserving Jakobsson-Floberg-Olsson)",
+                     choices=CAVITATION_MODELS)
+    p_cav: float = key(0.0, help="pressure below which the film ruptures (absolute)", dimension="[pressure]",
+                       unit="Pa", low=0.0, example="0.1 atm")
+    p_ref: float = key(101325.0, help="ambient pressure, which fixes the film's free constant (absolute)",
+                       dimension="[pressure]", unit="Pa", low=0.0, bounds="()", example="1 atm")
+
+    def __post_init__(self):
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class Run:
+    """How long to integrate and how accurately."""
+
+    t_end: float = key(help="duration (in units of tau in a dimensionless scene)", dimension="[time]", unit="s",
+                       low=0.0, bounds="()", example="30 s")
+    rtol: float = key(1e-8, help="relative tolerance of the integrator", low=0.0, high=0.1, bounds="(]")
+
+    def __post_init__(self):
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene. Build it with :func:`dynamics.scenes.load.load_scene` or ``parse_scene``.
+
+    Attributes
+    ----------
+    apparatus : Apparatus or None
+        The device (SI). None for a dimensionless ``[groups]`` scene of the
+        reduced model.
+    groups : Groups
+        s, Upsilon, mu_ and delta/a. They are derived from the apparatus when
+        there is one.
+    initial : Initial
+        SI, or in units of tau when :attr:`dimensionless`.
+    model : Model
+    contact : Contact or None
+        None when the scene has no ``[contact]`` section, and then there is no
+        contact machinery.
+    cavitation : Cavitation or None
+        None when the scene has no ``[cavitation]`` section, and then the film
+        is full.
+    run : Run
+        ``t_end`` in s, or in tau when :attr:`dimensionless`.
+    source : str
+        Where the scene was read from. It is not compared, so that a scene
+        equals its resolved copy.
+    """
+
+    apparatus: Apparatus | None
+    groups: Groups
+    initial: Initial
+    model: Model
+    contact: Contact | None
+    cavitation: Cavitation | None
+    run: Run
+    source: str = field(default="<string>", compare=False)
+
+    @property
+    def dimensionless(self) -> bool:
+        """True for a ``[groups]`` scene without an apparatus: times in tau, rates in 1/tau."""
+        return self.apparatus is None
+
+    @property
+    def tau(self) -> float:
+        """The time scale (2.9) in s, or 1 in a dimensionless scene."""
+        return 1.0 if self.apparatus is None else self.apparatus.tau
+
+    @property
+    def t_end_tau(self) -> float:
+        """The run length in units of tau."""
+        return self.run.t_end / self.tau
+
+
+# -- the table every reader uses ------------------------------------------------------
+
+#: Keys a scene may give in place of a field: (section, key) -> its rule.
+ALTERNATIVE_KEYS: dict[tuple[str, str], Key] = {
+    ("apparatus", "preset"): Key(help="a device of the paper's Table 2; explicit keys override it",
+                                 choices=tuple(PRESETS)),
+    ("apparatus", "rho_a"): Key(help="density of a solid inner cylinder, instead of m_a",
+                                dimension="[mass] / [length] ** 3", unit="kg/m^3", low=0.0, bounds="()",
+                                example="7.85 g/cm^3"),
+    ("contact", "sigma"): Key(help="the asperities' gap, instead of kappa_star = 1 - sigma/delta",
+                              dimension="[length]", unit="m", low=0.0, bounds="()", example="50 um"),
+    ("contact", "friction_angle"): Key(help="physical friction angle psi_hat, instead of psi", **_FRICTION),
+    ("run", "t_end_tau"): Key(help="duration in units of tau, instead of t_end", unit="tau", low=0.0,
+                              bounds="()"),
+}
+
+#: Pairs of keys that say the same thing: a scene gives one, and an override of one replaces the other.
+ALTERNATIVES = (("apparatus", "m_a", "rho_a"), ("contact", "sigma", "kappa_star"),
+                ("contact", "friction_angle", "psi"), ("run", "t_end", "t_end_tau"))
+
+_SECTION_CLASSES = {"groups": Groups, "initial": Initial, "model": Model, "contact": Contact,
+                    "cavitation": Cavitation, "run": Run}
+
+
+def _sections() -> dict[str, dict[str, Key]]:
+    """Every section's keys in the order of its dataclass, alternatives after the field they replace."""
+    table: dict[str, dict[str, Key]] = {"apparatus": {}, "fluid": {}, "incline": {}}
+    for f in dataclasses.fields(Apparatus):
+        table[field_key(f).section][f.name] = field_key(f)
+    table["apparatus"] = {"preset": ALTERNATIVE_KEYS["apparatus", "preset"], **table["apparatus"]}
+    for name, cls in _SECTION_CLASSES.items():
+        table[name] = {(field_key(f).toml or f.name): field_key(f) for f in dataclasses.fields(cls)}
+    for (section, name), rule in ALTERNATIVE_KEYS.items():
+        table[section].setdefault(name, rule)
+    return {name: table[name] for name in ("apparatus", "fluid", "incline", "groups", "initial", "model",
+                                           "contact", "cavitation", "run")}
+
+
+#: section -> {key: Key}, in the order scenes and the documentation list them.
+SECTIONS: dict[str, dict[str, Key]] = _sections()
+
+
+def spec(name: str) -> Key:
+    """The rule of the key ``name``, given as "section.key"."""
+    section, key_name = name.split(".")
+    return SECTIONS[section][key_name]
+
+
+def field_of(section: str, key_name: str) -> str:
+    """The dataclass field a scene key fills (``groups.mu`` fills ``mu_ratio``)."""
+    for f in dataclasses.fields(_SECTION_CLASSES.get(section, Apparatus)):
+        if (field_key(f).toml or f.name) == key_name:
+            return f.name
+    return key_name
