@@ -371,3 +371,21 @@ def test_default_mesh_accuracy(delta_over_a, kappa):
     scale = np.abs(ref)
     scale[4] = max(scale[3], scale[4])
     assert np.all(np.abs(v1 - ref) / scale < 2e-6)
+
+
+def test_cached_systems_stay_within_their_memory_bound(monkeypatch):
+    """Factorised systems are kept for reuse, but no more of them than CACHE_BYTES allows."""
+    from lubrication import stokes
+
+    stokes.clear_cache()
+    small = {"n_around": 64, "n_across": 4}
+    first = stokes.stokes_resistance(1.0, 1.2, 0.3, **small)
+    one = next(iter(stokes._CACHE.values())).nbytes
+    monkeypatch.setattr(stokes, "CACHE_BYTES", 2.5 * one)
+    for kappa in (0.4, 0.5, 0.6, 0.3):
+        stokes.stokes_resistance(1.0, 1.2, kappa, **small)
+    assert len(stokes._CACHE) == 2
+    assert sum(d.nbytes for d in stokes._CACHE.values()) <= stokes.CACHE_BYTES
+    # a system dropped and built again gives the same numbers
+    assert stokes.stokes_resistance(1.0, 1.2, 0.3, **small).f_eps_per_eps_dot == first.f_eps_per_eps_dot
+    stokes.clear_cache()
