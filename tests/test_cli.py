@@ -123,3 +123,17 @@ def test_forces_with_cavitation(capsys):
     code, out, _ = run(capsys, *args)
     full = json.loads(out)
     assert jfo["cavitation"] == "jfo" and abs(jfo["f_eps"] - full["f_eps"]) > 1e-3 * abs(full["f_chi"])
+
+
+def test_all_models_report_each_component_against_its_own_size():
+    """Near contact f_chi is a small component of the force: its difference is judged against itself."""
+    from types import SimpleNamespace
+
+    from dynamics.app.cli import _relative_differences
+
+    ref = SimpleNamespace(f_eps=1000.0, f_chi=1.0, T_a=2.0)
+    other = SimpleNamespace(f_eps=1000.0, f_chi=1.33, T_a=2.0)
+    assert _relative_differences(other, ref)["f_chi"] == pytest.approx(0.33)
+    zero = SimpleNamespace(f_eps=5.0, f_chi=0.0, T_a=0.0)
+    off = SimpleNamespace(f_eps=5.0, f_chi=1e-3, T_a=0.0)
+    assert _relative_differences(off, zero)["f_chi"] == pytest.approx(2e-4)

@@ -123,10 +123,17 @@ def _has_fem() -> bool:
 
 
 def _relative_differences(f, ref) -> dict[str, float]:
-    """Differences from ``ref``: forces against the size of the reference force, torque against its torque."""
+    """Each component's difference from ``ref``, relative to that component of ``ref``.
+
+    A component the reference makes zero (f_chi at kappa = 0, by symmetry) is
+    judged against the size of the force, or of the torque's own terms, instead.
+    """
     force_scale = math.hypot(ref.f_eps, ref.f_chi)
     out = {}
-    for name, scale in (("f_eps", force_scale), ("f_chi", force_scale), ("T_a", abs(ref.T_a))):
+    for name in ("f_eps", "f_chi", "T_a"):
+        own = abs(getattr(ref, name))
+        fallback = force_scale if name != "T_a" else 0.0
+        scale = own if own > 1e-12 * fallback else fallback
         diff = abs(getattr(f, name) - getattr(ref, name))
         out[name] = diff / scale if scale > 0 else diff
     return out
