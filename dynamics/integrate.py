@@ -147,8 +147,9 @@ def integrate(fun, y0, t_end: float, *, jac=None, rtol: float = 1e-8, atol=1e-10
             g_old = [ev.g(t_new, y_new) for ev in events]
             if bar is not None:
                 bar.update(t_new - bar.n)
-    except KeyboardInterrupt:
-        status, reason = "interrupted", f"interrupted at t = {_now(solver):.6g}"
+    except KeyboardInterrupt as err:
+        by = f" by {err}" if str(err) else ""
+        status, reason = "interrupted", f"interrupted{by} at t = {_now(solver):.6g}"
     except (ArithmeticError, ValueError, np.linalg.LinAlgError) as err:
         status, reason = "failed", f"{type(err).__name__} at t = {_now(solver):.6g}: {err}"
     finally:

@@ -12,6 +12,7 @@ import argparse
 import json
 import math
 import re
+import signal
 import sys
 import time
 from importlib.metadata import entry_points
@@ -256,7 +257,13 @@ def _add_run(subparsers) -> None:
     p.set_defaults(run=_run_scene)
 
 
+def _interrupt(signum, _frame):
+    """SIGINT (Ctrl-C) or SIGTERM stops a run, which keeps what it computed and says which signal."""
+    raise KeyboardInterrupt(signal.Signals(signum).name)
+
+
 def _run_scene(args) -> int:
+    from dynamics.app.folder import FolderError, OutputFolder
     from dynamics.app.output import write_outputs
     from dynamics.app.run import run_scene
     from dynamics.scenes import SceneError, load_scene, resolved_toml
@@ -273,18 +280,27 @@ def _run_scene(args) -> int:
         overrides.append(f'model.forces="{args.forces}"')
     try:
         scene = load_scene(args.scene, overrides)
-        trajectory = run_scene(scene, method=args.method, progress="snail run")
-    except SceneError as err:
+        folder = OutputFolder(args.output).__enter__()  # checked and locked before anything runs
+    except (SceneError, FolderError) as err:
         raise UsageError(str(err)) from err
-    info = write_outputs(args.output, trajectory, resolved_scene=resolved_toml(scene),
-                         scene=scene.source)
+    previous = {s: signal.signal(s, _interrupt) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        try:
+            trajectory = run_scene(scene, method=args.method, progress="snail run")
+        except SceneError as err:
+            raise UsageError(str(err)) from err
+        info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source)
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+        folder.__exit__(None, None, None)
     if args.json:
         print(json.dumps(info, indent=2))
     else:
         print(f"{info['status']}: {info['reason']}")
         print(f"regime {info['regime']}, mean speed {info['mean_speed']:.4g} "
               f"({'b/tau' if info['dimensionless'] else 'm/s'}), {info['steps']} steps in "
-              f"{info['wall_time_s']:.2f} s; outputs in {args.output}/")
+              f"{info['wall_time_s']:.2f} s; outputs in {folder.path}/")
     return 0 if trajectory.status == "completed" else 1
 
 

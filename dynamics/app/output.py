@@ -10,6 +10,7 @@ import numpy as np
 
 from dynamics.app.regime import classify
 from dynamics.simulate import Trajectory
+from dynamics.app.folder import OutputFolder
 from lubrication.files import save_figure, write_json, write_text
 
 __all__ = ["CSV_COLUMNS", "summary", "trajectory_csv", "write_outputs", "plot_trajectory"]
@@ -109,18 +110,28 @@ def plot_trajectory(trajectory: Trajectory):
     return fig
 
 
-def write_outputs(outdir: str | Path, trajectory: Trajectory, *, resolved_scene: str = "", **extra) -> dict:
-    """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml); return the summary."""
+def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",
+                  **extra) -> dict:
+    """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
+
+    ``folder`` is an entered :class:`~dynamics.app.folder.OutputFolder` (the
+    command line opens it before the run, so that a bad path is refused before
+    anything is computed), or a path, which is opened here. The files go into
+    its staging folder and are moved into place together; the summary is returned.
+    """
+    if not isinstance(folder, OutputFolder):
+        with OutputFolder(folder) as opened:
+            return write_outputs(opened, trajectory, resolved_scene=resolved_scene, **extra)
     import matplotlib.pyplot as plt
 
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
+    staging = folder.staging
     info = summary(trajectory, **extra)
-    write_text(outdir / "trajectory.csv", trajectory_csv(trajectory))
+    write_text(staging / "trajectory.csv", trajectory_csv(trajectory))
     fig = plot_trajectory(trajectory)
-    save_figure(outdir / "trajectory.png", fig, dpi=110)
+    save_figure(staging / "trajectory.png", fig, dpi=110)
     plt.close(fig)
     if resolved_scene:
-        write_text(outdir / "scene.resolved.toml", resolved_scene)
-    write_json(outdir / "summary.json", info)
+        write_text(staging / "scene.resolved.toml", resolved_scene)
+    write_json(staging / "summary.json", info)
+    folder.commit()
     return info
