@@ -3,17 +3,17 @@
 from __future__ import annotations
 
 import io
-import math
 from pathlib import Path
 
 import numpy as np
 
+from dynamics.app.figures import trajectory_figure
+from dynamics.app.folder import OutputFolder
 from dynamics.app.regime import classify
 from dynamics.simulate import Trajectory
-from dynamics.app.folder import OutputFolder
 from lubrication.files import save_figure, write_json, write_text
 
-__all__ = ["CSV_COLUMNS", "summary", "trajectory_csv", "write_outputs", "plot_trajectory"]
+__all__ = ["CSV_COLUMNS", "summary", "trajectory_csv", "write_outputs"]
 
 CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "phi", "omega_a", "omega_b")
 
@@ -63,53 +63,6 @@ def summary(trajectory: Trajectory, **extra) -> dict:
     return out
 
 
-def plot_trajectory(trajectory: Trajectory):
-    """Panels like the paper's figure 2: path of A in the (kappa, phi) plane, kappa(t), phi(t),
-    Omega_a and Omega_b, X_b(t)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    c = trajectory.columns
-    t = c["t_tau"]
-    rate = trajectory.tau  # rates shown in 1/tau
-    fig = plt.figure(figsize=(10, 6.2))
-    grid = fig.add_gridspec(3, 2, width_ratios=(1, 1.4))
-    ax_path = fig.add_subplot(grid[:, 0])
-    kappa, phi = c["kappa"], c["phi"]
-    ax_path.plot(kappa * np.sin(phi), kappa * np.cos(phi), lw=0.8)
-    ax_path.plot(kappa[0] * math.sin(phi[0]), kappa[0] * math.cos(phi[0]), "o", ms=4, label="start")
-    circle = np.linspace(0, 2 * math.pi, 200)
-    ax_path.plot(np.sin(circle), np.cos(circle), "k", lw=0.5)
-    ax_path.set_aspect("equal")
-    ax_path.set_xlabel("kappa sin(phi)")
-    ax_path.set_ylabel("kappa cos(phi)  (up)")
-    ax_path.set_title("path of the inner centre")
-    ax_path.legend(fontsize=8, loc="lower right")
-    ax_k = fig.add_subplot(grid[0, 1])
-    ax_k.plot(t, kappa, lw=0.8)
-    ax_k.set_ylabel("kappa")
-    ax_p = fig.add_subplot(grid[1, 1], sharex=ax_k)
-    ax_p.plot(t, phi, lw=0.8)
-    ax_p.set_ylabel("phi (rad)")
-    ax_w = fig.add_subplot(grid[2, 1], sharex=ax_k)
-    ax_w.plot(t, c["omega_a"] * rate, lw=0.8, label="Omega_a")
-    ax_w.plot(t, c["omega_b"] * rate, lw=0.8, label="Omega_b")
-    ax_w.set_ylabel("rate x tau")
-    ax_w.set_xlabel("t / tau")
-    ax_w.legend(fontsize=8)
-    ax_x = ax_k.twinx()
-    ax_x.plot(t, c["x_b"], color="C3", lw=0.8)
-    ax_x.set_ylabel("X_b" + (" / b" if trajectory.dimensionless else " (m)"), color="C3")
-    title = f"{trajectory.equations} model, {trajectory.forces} forces: {trajectory.status}"
-    if trajectory.groups:
-        title += " (" + ", ".join(f"{k} = {v:.3g}" for k, v in trajectory.groups.items()) + ")"
-    fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
-    return fig
-
-
 def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",
                   **extra) -> dict:
     """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
@@ -122,14 +75,10 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
     if not isinstance(folder, OutputFolder):
         with OutputFolder(folder) as opened:
             return write_outputs(opened, trajectory, resolved_scene=resolved_scene, **extra)
-    import matplotlib.pyplot as plt
-
     staging = folder.staging
     info = summary(trajectory, **extra)
     write_text(staging / "trajectory.csv", trajectory_csv(trajectory))
-    fig = plot_trajectory(trajectory)
-    save_figure(staging / "trajectory.png", fig, dpi=110)
-    plt.close(fig)
+    save_figure(staging / "trajectory.png", trajectory_figure(trajectory), dpi=110)
     if resolved_scene:
         write_text(staging / "scene.resolved.toml", resolved_scene)
     write_json(staging / "summary.json", info)

@@ -1,0 +1,111 @@
+"""The trajectory figure: what a physicist wants to see of a run, drawn without pyplot's state machine.
+
+Panels: the path of the inner centre in the frame of the outer cylinder,
+coloured by the logarithm of time (so a long run stays readable); the gap 1 - kappa on a log
+axis (it spans decades as the cylinders approach, and a linear kappa sits at 1);
+the angle of the line of centres from the downward vertical, where rocking
+shows as a swing about the resting angle (or the turns, for a winding run);
+the spins Omega_a and Omega_b; the distance rolled X_b. Time is in the scene's
+units, with tau stated; the title names the model in the paper's terms and
+says how the run ended.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["trajectory_figure"]
+
+_EQUATIONS = {"full": "full equations (2.1)-(2.4)", "reduced": "reduced equations (2.11)"}
+_FORCES = {"closed-form": "lubrication forces (2.5)-(2.7)", "reynolds": "Reynolds-equation forces",
+           "stokes": "Stokes forces (finite elements, tabulated)", "stokes-exact": "exact Stokes forces"}
+
+
+def _title(trajectory) -> str:
+    equations = _EQUATIONS.get(trajectory.equations, trajectory.equations)
+    forces = trajectory.forces
+    forces = _FORCES.get(forces.split("/")[0], forces) + (
+        f", {forces.split('/', 1)[1]} cavitation" if "/" in forces else "")
+    line1 = f"{equations}, {forces}"
+    line2 = f"{trajectory.status}: {trajectory.reason}"
+    g = trajectory.groups
+    names = {"s": "s", "upsilon": "Upsilon", "mu": "mu", "delta_over_a": "delta/a"}
+    groups = ", ".join(f"{names[k]} = {g[k]:.3g}" for k in names if k in g)
+    tau = "" if trajectory.dimensionless else f", tau = {trajectory.tau:.3g} s"
+    return f"{line1}\n{line2}\n{groups}{tau}"
+
+
+def _angle_panel(ax, t, phi):
+    """Rocking about the bottom: phi - pi in degrees; winding: phi in turns."""
+    turns = (phi.max() - phi.min()) / (2.0 * math.pi) if phi.size else 0.0
+    if turns > 1.0:
+        ax.plot(t, phi / (2.0 * math.pi), lw=0.8)
+        ax.set_ylabel("phi (turns)")
+        return
+    # centre the swing on the downward vertical nearest to the run's end
+    bottom = math.pi + 2.0 * math.pi * round((phi[-1] - math.pi) / (2.0 * math.pi)) if phi.size else math.pi
+    ax.plot(t, np.degrees(phi - bottom), lw=0.8)
+    ax.axhline(0.0, color="k", lw=0.4)
+    ax.set_ylabel("phi - pi (deg)")
+
+
+def trajectory_figure(trajectory):
+    """A :class:`matplotlib.figure.Figure` of ``trajectory`` (no pyplot, no global state)."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import LogNorm
+    from matplotlib.figure import Figure
+
+    c = trajectory.columns
+    dimless = trajectory.dimensionless
+    t = c["t"]
+    t_label = "t / tau" if dimless else "t (s)"
+    rate_unit = "1/tau" if dimless else "rad/s"
+    kappa, phi, gap = c["kappa"], c["phi"], c["one_minus_kappa"]
+
+    fig = Figure(figsize=(10.5, 7.0), layout="constrained")
+    grid = fig.add_gridspec(4, 2, width_ratios=(1.0, 1.35))
+    ax_path = fig.add_subplot(grid[:, 0])
+    x, z = kappa * np.sin(phi), kappa * np.cos(phi)
+    points = np.column_stack([x, z]).reshape(-1, 1, 2)
+    segments = np.concatenate([points[:-1], points[1:]], axis=1)
+    # colour by log time: the motion slows by decades as the gap closes
+    t_end = float(t[-1]) if t.size else 1.0
+    t_low = max(t_end * 1e-4, float(t[1]) if t.size > 1 else t_end * 1e-4)
+    lines = LineCollection(segments, array=np.clip(t[1:], t_low, None), cmap="viridis", linewidths=0.9,
+                           norm=LogNorm(vmin=t_low, vmax=max(t_end, t_low * 10)))
+    ax_path.add_collection(lines)
+    circle = np.linspace(0.0, 2.0 * math.pi, 400)
+    ax_path.plot(np.sin(circle), np.cos(circle), "k", lw=0.5)
+    if t.size:
+        ax_path.plot(x[0], z[0], "o", ms=4, color="C1", label="start")
+        ax_path.plot(x[-1], z[-1], "s", ms=4, color="C3", label="end")
+    ax_path.set_xlim(-1.08, 1.08)
+    ax_path.set_ylim(-1.08, 1.08)
+    ax_path.set_aspect("equal")
+    ax_path.set_xlabel("kappa sin(phi)  (down the slope)")
+    ax_path.set_ylabel("kappa cos(phi)  (up)")
+    ax_path.set_title("path of the inner centre A relative to B", fontsize=9)
+    ax_path.legend(fontsize=8, loc="upper right")
+    bar = fig.colorbar(lines, ax=ax_path, orientation="horizontal", fraction=0.05, pad=0.08)
+    bar.set_label(f"{t_label}, log scale")
+
+    ax_gap = fig.add_subplot(grid[0, 1])
+    ax_gap.semilogy(t, np.maximum(gap, 1e-300), lw=0.8)
+    ax_gap.set_ylabel("1 - kappa")
+    ax_phi = fig.add_subplot(grid[1, 1], sharex=ax_gap)
+    _angle_panel(ax_phi, t, phi)
+    ax_w = fig.add_subplot(grid[2, 1], sharex=ax_gap)
+    ax_w.plot(t, c["omega_a"], lw=0.8, label="Omega_a (inner)")
+    ax_w.plot(t, c["omega_b"], lw=0.8, label="Omega_b (outer)")
+    ax_w.set_ylabel(f"spin ({rate_unit})")
+    ax_w.legend(fontsize=8)
+    ax_x = fig.add_subplot(grid[3, 1], sharex=ax_gap)
+    ax_x.plot(t, c["x_b"], color="C3", lw=0.8)
+    ax_x.set_ylabel("X_b / b" if dimless else "X_b (m)")
+    ax_x.set_xlabel(t_label)
+    for ax in (ax_gap, ax_phi, ax_w):
+        ax.tick_params(labelbottom=False)
+    fig.suptitle(_title(trajectory), fontsize=9)
+    return fig
