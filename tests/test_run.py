@@ -174,3 +174,24 @@ def test_a_rough_contact_scene_rolls_irregularly_and_deterministically(tmp_path,
     assert summaries[0]["final"] == summaries[1]["final"]
     header = (tmp_path / "one" / "trajectory.csv").read_text().splitlines()[0]
     assert header.endswith("theta_a,theta_b")
+
+
+@pytest.mark.parametrize("cavitation", ["half-sommerfeld", "swift-stieber", "jfo"])
+def test_steady_rolling_on_a_cavitating_film_is_recognised(cavitation):
+    """Section 7: a film that ruptures a few pascals below the bubble's pressure stops the sinking.
+
+    From about 2 s the gap, the angle and the speed stay constant; the classifier
+    says so, with the spreads that decided it (the full film of the same scene keeps
+    closing and is not steady).
+    """
+    from dynamics.app.regime import STEADY_SPREAD, classify
+    from dynamics.app.run import run_scene
+    from dynamics.scenes import load_scene
+
+    base = ["model.forces=reynolds", "model.n=128", "run.t_end=20"]
+    scene = load_scene(overrides=[*base, f"cavitation.model={cavitation}", "cavitation.p_cav=101320"])
+    regime, evidence = classify(run_scene(scene))
+    assert regime == "steady rolling"
+    assert evidence["one_minus_kappa_relative_spread_late"] < STEADY_SPREAD
+    full_film, evidence = classify(run_scene(load_scene(overrides=base)))
+    assert full_film != "steady rolling" and evidence["one_minus_kappa_relative_spread_late"] > 0.3
