@@ -195,7 +195,8 @@ class Apparatus:
             msg = (f"mu_ratio must be in (1 + m_f/m_a, inf) = ({mu_min:.6g}, inf) for "
                    f"delta_over_a = {delta_over_a:g} and density_ratio = {density_ratio:g}, "
                    f"got {mu_ratio!r}: mu_ = (M + m_b)/m_a = 1 + (2 m_b + m_f)/m_a needs a "
-                   f"positive outer mass m_b (raise density_ratio to lower the bound)")
+                   f"positive outer mass m_b; the bound falls with a thinner gap delta_over_a, or "
+                   f"with an inner cylinder denser than {density_ratio:g} times the fluid")
             raise ValueError(msg)
         m_b = 0.5 * (mu_ratio * m_a - m_a - m_f)
         m_reduced = m_a - m_displaced

@@ -171,8 +171,8 @@ def _check_pressures(model: str, p_cav: float, p_ref: float) -> tuple[float, flo
     p_cav = check_finite("p_cav", p_cav)
     p_ref = check_finite("p_ref", p_ref)
     if not p_cav <= p_ref:
-        msg = (f"p_cav must not exceed p_ref = {p_ref:g} Pa (the reference node is in the film), "
-               f"got {p_cav:g} Pa")
+        msg = (f"p_cav must not exceed p_ref (the reference node is in the film), got p_cav = {p_cav:g} Pa "
+               f"and p_ref = {p_ref:g} Pa")
         raise ValueError(msg)
     return p_cav, p_ref
 

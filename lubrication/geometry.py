@@ -87,6 +87,9 @@ class Annulus:
             msg = f"b must be greater than a = {a:g} m (outer radius), got {self.b!r}"
             raise ValueError(msg)
         delta = b - a
+        if not math.isfinite(delta / a):
+            msg = f"b must be in (a, inf) with a finite ratio b/a, got a = {a!r} m, b = {self.b!r} m"
+            raise ValueError(msg)
         check_range("length", self.length, 0.0, math.inf, low_open=True, unit="m")
         if math.isnan(self.one_minus_kappa):
             eps = check_range("eps", self.eps, 0.0, delta, unit="m (eps = kappa (b - a))")

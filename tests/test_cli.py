@@ -116,7 +116,7 @@ def test_stokes_without_the_fem_extra_says_how_to_install_it(monkeypatch, capsys
 def test_forces_with_cavitation(capsys):
     """Below the cavitation pressure the film ruptures: the JFO forces differ from the full film's."""
     args = ["forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256",
-            "--p-ref", "0", "--p-cav", "-5", "--json"]
+            "--p-ref", "101325", "--p-cav", "101320", "--json"]
     code, out, _ = run(capsys, *args, "--cavitation", "jfo")
     assert code == 0
     jfo = json.loads(out)
@@ -137,3 +137,26 @@ def test_all_models_report_each_component_against_its_own_size():
     zero = SimpleNamespace(f_eps=5.0, f_chi=0.0, T_a=0.0)
     off = SimpleNamespace(f_eps=5.0, f_chi=1e-3, T_a=0.0)
     assert _relative_differences(off, zero)["f_chi"] == pytest.approx(2e-4)
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    (["--model", "closed-form", "--cavitation", "jfo"], "--cavitation jfo needs the Reynolds solver"),
+    (["--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1"], "--p-ref must be in (0, inf) Pa"),
+    (["--model", "reynolds", "--cavitation", "jfo", "--p-cav", "2e5"], "--p-cav must be in [0, 101325)"),
+])
+def test_cavitation_options_are_checked(capsys, args, words):
+    code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", *args)
+    assert code == 2 and words in err and out == ""
+
+
+def test_a_gap_ratio_that_overflows_is_refused(capsys):
+    code, _, err = run(capsys, "forces", "--a", "1e-300", "--b", "1e300", "--kappa", "0.5")
+    assert code == 2 and "finite ratio b/a" in err
+
+
+def test_version(capsys):
+    from importlib.metadata import version
+
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and version("snail-cylinder") in capsys.readouterr().out

@@ -303,3 +303,9 @@ def test_resolved_toml_round_trips(name):
     again = parse_scene(text)
     assert again == scene and again.dimensionless == scene.dimensionless
     assert resolved_toml(again).splitlines()[1:] == text.splitlines()[1:]
+
+
+def test_a_byte_order_mark_is_not_part_of_the_scene(tmp_path):
+    path = tmp_path / "bom.toml"
+    path.write_bytes("\ufeff".encode() + resolved_toml(load_scene()).encode())
+    assert load_scene(path) == load_scene()

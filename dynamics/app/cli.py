@@ -15,7 +15,7 @@ import re
 import signal
 import sys
 import time
-from importlib.metadata import entry_points
+from importlib.metadata import entry_points, version
 from pathlib import Path
 
 from dynamics.app.sweeps.cli import register as _add_sweep
@@ -140,6 +140,19 @@ def _relative_differences(f, ref) -> dict[str, float]:
     return out
 
 
+def _check_cavitation_options(args) -> None:
+    """Cavitation belongs to the Reynolds solver, and its pressures are absolute, as in scenes."""
+    from lubrication.geometry import check_range
+
+    if args.cavitation == "none":
+        return
+    if args.model not in ("reynolds", "all"):
+        msg = f"--cavitation {args.cavitation} needs the Reynolds solver: --model reynolds (or all)"
+        raise ValueError(msg)
+    check_range("--p-ref", args.p_ref, 0.0, math.inf, low_open=True, unit="Pa (absolute)")
+    check_range("--p-cav", args.p_cav, 0.0, args.p_ref, unit=f"Pa (absolute, below --p-ref = {args.p_ref:g} Pa)")
+
+
 def _run_forces(args) -> int:
     from lubrication import Annulus, Fluid, Motion, fluid_forces
 
@@ -154,6 +167,7 @@ def _run_forces(args) -> int:
                                    if args.cavitation != "none" else {})},
                    "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
                               if v is not None}}
+        _check_cavitation_options(args)
         if args.model == "auto":
             return _run_auto_forces(args, annulus, motion, fluid)
         models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (
@@ -306,6 +320,7 @@ def _run_scene(args) -> int:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="snail", description="The snail cylinder: fluid forces, trajectories, validation.")
+    parser.add_argument("--version", action="version", version=f"snail {version('snail-cylinder')}")
     subparsers = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     _add_forces(subparsers)
     _add_run(subparsers)

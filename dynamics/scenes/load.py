@@ -471,7 +471,7 @@ def load_scene(path: str | os.PathLike | None = None, overrides: Iterable[str] =
         resource = files("dynamics.scenes") / "default.toml"
         return parse_scene(resource.read_text(encoding="utf-8"), str(resource), overrides)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # a byte-order mark is not part of the TOML
     except (OSError, UnicodeDecodeError) as err:
         msg = f"cannot read the scene file {os.fspath(path)!r}: {err}"
         raise SceneError(msg) from err
