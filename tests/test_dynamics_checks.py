@@ -7,11 +7,13 @@ import pytest
 
 from dynamics.apparatus import Apparatus, preset
 from validation import dynamics_checks
+from validation.checks import comparisons
 from validation.dynamics_checks import critical_slope, runaway_estimates
 
 
 def test_quick_group_passes(tmp_path):
-    checks, figures, text = dynamics_checks.run(tmp_path, quick=True)
+    records, figures, text = dynamics_checks.run(tmp_path, quick=True)
+    checks = comparisons(records)
     failed = [f"{c.name}: {c.measured:.6g} vs {c.reference:.6g} ({c.note})" for c in checks if not c.passed]
     assert not failed, "\n".join(failed)
     assert figures == [] and "runaway" in text

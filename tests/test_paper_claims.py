@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from validation.checks import Check, absolute, relative
+from validation.checks import Check, Finding, absolute, relative
 from validation.paper_claims import CLAIMS, Claim, claim_rows, claims_table
 
 
@@ -19,7 +19,10 @@ TOY = Claim("toy", "the paper says 1", {"x": "toy: x*"}, _one, lambda f: (f["x"]
 def _example(pattern: str, passed: bool = True) -> Check:
     """A check whose name matches ``pattern``, measuring what its reference says, passed or not."""
     name = pattern.replace("*", "1")
-    return Check(name, 0.25 if "share of" in name else 1.0, 1.0, 0.1, passed)
+    if "estimate" in name:  # a number the report states without a verdict
+        return Finding(name, 1.0)
+    value = 0.25 if "share of" in name else 1.0
+    return Check(name, value if passed else value + 1.0, value, 0.1, "absolute")
 
 
 def _full_set(passed: bool = True) -> list[Check]:
@@ -96,6 +99,6 @@ def test_the_measured_number_reaches_the_table():
     """Changing a measured value in the run changes the rendered cell: nothing is hard-coded."""
     full = _full_set()
     q = next(c for c in full if c.name.startswith("figure 2 (mu_=1): decay exponent"))
-    changed = [Check(c.name, 0.987654, c.reference, c.tolerance, True) if c is q else c for c in full]
+    changed = [Check(c.name, 0.987654, c.reference, c.tolerance, c.kind) if c is q else c for c in full]
     row = next(r for r in claim_rows(changed) if r.item == "Figure 2: decay exponent q")
     assert "0.9877" in row.measured

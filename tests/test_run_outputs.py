@@ -6,7 +6,6 @@ and every wait is bounded.
 """
 
 import json
-import os
 import signal
 import subprocess
 import sys

@@ -68,7 +68,7 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.simulate import PHASE_CODES, Initial, Trajectory
 from lubrication.files import save_figure
 
-from .checks import Check, absolute, at_most, relative
+from .checks import Check, Finding, absolute, at_most, relative
 
 __all__ = [
     "FIGURE7", "KAPPA_STAR", "RELEASE", "PSI_EXPERIMENT", "SANDPAPER",
@@ -255,7 +255,10 @@ def figure9_checks(runs: dict[float, Trajectory], s_onset: float) -> list[Check]
     wrong_branch = sum(tr.info["final_phase"] != steady_state(s, KAPPA_STAR, FIGURE9_PSI).phase
                        for s, tr in settled.items())
     below, above = runs[0.98 * s_onset], runs[1.02 * s_onset]
+    unsettled = sorted(s for s in runs if s not in settled)
     return [
+        absolute(f"figure 9: runs of {len(runs)} that did not settle", len(unsettled), 0.0, 0.0,
+                 f"every s here is below kappa* and rolls steadily; not settled: {unsettled}"),
         at_most(f"figure 9: steady rates of {len(settled)} runs vs (5.10)/(5.11), relative to 3 zeta* s",
                 _max_or_nan(errors), STEADY_TOLERANCE, "largest over s"),
         at_most("figure 9: runs settled on the other branch than the locking test's", wrong_branch, 0.0),
@@ -311,7 +314,15 @@ def figure10_checks(rows: list[dict]) -> list[Check]:
         collapse.setdefault((r["material"], r["alpha_deg"], r["zeta_star"]), []).append(r["v"] / r["v_star"])
     spread = [max(v) / min(v) - 1.0 for v in collapse.values() if len(v) > 1]
     compact = [abs(r["v"] / r["v_compact"] - 1.0) / r["zeta_star"] ** 2 for r in settled]
+    runaways = [r for r in rows if r["event"] == "runaway"]
+    neither = [f"{r['material']} {r['alpha_deg']:g} deg {r['nu']:g} m^2/s zeta* {r['zeta_star']:g}"
+               for r in rows if not r["settled"] and r["event"] != "runaway"]
     return [
+        absolute(f"figure 10: runs of {len(rows)} that neither settled nor ran away", len(neither), 0.0, 0.0,
+                 "each run ends in steady rolling or is stopped as a runaway; " + ("; ".join(neither) or "none")),
+        Finding(f"figure 10: runs of {len(rows)} that ran away instead of settling", len(runaways),
+                "; ".join(f"{r['material']} {r['alpha_deg']:g} deg, {r['nu']:g} m^2/s, zeta* {r['zeta_star']:g}"
+                          for r in runaways) or "none"),
         at_most(f"figure 10: speeds b Omega_b of {len(settled)} settled runs vs (6.1)-(6.2), relative",
                 _max_or_nan(map(_speed_error, settled)), STEADY_TOLERANCE,
                 "(6.1) with the exact Omega_b of (5.10)/(5.11)"),

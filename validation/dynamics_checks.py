@@ -112,7 +112,7 @@ from dynamics.equations.special import (
 from dynamics.scenes import Initial
 from dynamics.simulate import simulate_full, simulate_reduced
 
-from .checks import Check, absolute, at_most, relative
+from .checks import Check, Finding, absolute, at_least, at_most, relative
 
 __all__ = [
     "FIG2",
@@ -135,7 +135,7 @@ LIMIT_GROUPS = (0.5, 1.0, 2.0)  # (s, Upsilon, mu_) held fixed as delta/a -> 0
 LIMIT_START = Initial(0.3, 0.5)
 LIMIT_WINDOW = 10.0  # tau
 LIMIT_RTOL = 1e-10  # far below the smallest difference measured (3e-4)
-STEEP = 12.0  # degrees: s = 1.89 for the aluminium apparatus, no rest state at all
+STEEP = 30.0  # degrees: s = 4.6 for the aluminium apparatus, far from any rest state
 RUNAWAY_REYNOLDS = 1e3  # raised from 10: the check measures what the model implies, not its validity
 SPIN_PLANE = ("kappa", "phi", "omega_a", "omega_b")
 
@@ -253,10 +253,10 @@ def rocking_checks(traj, mu_ratio: float, full_set: bool) -> list[Check]:
     late = t_peak > 100.0
     exponent = np.polyfit(np.log(np.interp(t_peak[late], traj.t, zeta)), np.log(amplitude[late]), 1)[0]
     checks = [
-        Check(f"{tag}: stopped at the gap floor 1 - kappa = {ROCKING_FLOOR:g}", traj.one_minus_kappa[-1],
-              ROCKING_FLOOR, 1e-6 * ROCKING_FLOOR, traj.stop_reason == "gap_floor"
-              and abs(traj.one_minus_kappa[-1] / ROCKING_FLOOR - 1.0) <= 1e-6, "relative",
-              f"{traj.message}: the inner cylinder reaches contact"),
+        absolute(f"{tag}: stopped by the gap-floor event (1 if so)", float(traj.stop_reason == "gap_floor"), 1.0,
+                 0.0, f"{traj.message}: the inner cylinder reaches contact"),
+        relative(f"{tag}: 1 - kappa where it stopped", traj.one_minus_kappa[-1], ROCKING_FLOOR, 1e-6,
+                 "the event is located on the dense output"),
         relative(f"{tag}: decay exponent of the rocking envelope against zeta", exponent,
                  decay_exponent(mu_ratio), 0.05, "q of (3.10); 5% allows the O(zeta) corrections"),
     ]
@@ -324,9 +324,8 @@ def steady_rolling_checks(s_values=(0.1, 0.25, 0.5, 0.9, 0.99)) -> list[Check]:
         checks.append(at_most(f"steady rolling (3.2), s={s:g}: largest rate of change", np.max(np.abs(
             reduced_rhs(0.0, y, params)[:4])), 1e-14 * (1.0 + 1.0 / params.upsilon), "rounding"))
         growth = np.max(np.linalg.eigvals(reduced_jacobian(0.0, y, params)[:4, :4]).real)
-        checks.append(Check(f"steady rolling (3.2), s={s:g}: largest real part of the Jacobian's eigenvalues",
-                            growth, 0.0, 0.0, growth > 1e-6, "lower-bound",
-                            "must be positive: the equilibrium is unstable (section 3.1)"))
+        checks.append(at_least(f"steady rolling (3.2), s={s:g}: largest real part of the Jacobian's eigenvalues",
+                               growth, 1e-6, "must be positive: the equilibrium is unstable (section 3.1)"))
     return checks
 
 
@@ -435,8 +434,8 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
                  est.model, 1e-3, "quadratic fit to X_b over the second half; corrections O(g/(delta Omega^2)) "
                  "to f, a fraction of f = 0.6%"),
         relative(f"{tag}: share of the work of gravity lost in the film, second half", steep["lost_fraction"],
-                 est.dissipated_fraction, 0.15, "f of the module docstring, approached from below as "
-                 "g/(delta Omega^2) -> 0 (measured 0.52% over 1.5-3 s at 12 deg, 0.59% over 2.5-5 s at 30 deg)"),
+                 est.dissipated_fraction, 0.02, "f of the module docstring, approached from below as "
+                 "g/(delta Omega^2) -> 0: 1.3% short over 2.5-5 s at 30 deg (10% short at 12 deg)"),
         at_most(f"{tag}: stopped only by t_end", 0.0 if steep["run"].status == "completed" else 1.0, 0.0,
                 f"max_reynolds raised to {RUNAWAY_REYNOLDS:g} (reached {steep['reynolds']:.0f}): the check "
                 "measures what the model implies beyond its Stokes-flow validity"),
@@ -444,12 +443,13 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
     est = paper_slope["estimates"]
     a = paper_slope["acceleration"]
     tag = f"aluminium at {paper_slope['alpha_deg']:g} deg"
+    # the other estimates differ from each other by a few per cent: reported, not judged
     for name, value, why in (("paper's (3.11) M g sin(alpha)/(M + m_b + m_a/2)", est.paper, "a = b, delta = 0"),
                              ("rigid body M g sin(alpha) b^2/(m_a a^2/2 + (M + m_b) b^2)", est.rigid,
                               "no m_eff delta^2, no film loss"),
                              ("observed 2 g sin(alpha)/3 (figure 6)", est.observed, "experiment")):
-        checks.append(relative(f"{tag}: runaway acceleration against the {name}", a, value, 0.05,
-                               f"{why}; finite delta/a = 0.41 moves the moment of inertia by up to 5%"))
+        checks.append(Finding(f"{tag}: runaway acceleration estimate, {name} (m/s^2)", value,
+                              f"{why}; the model's is {a:.4g} m/s^2, {a / value - 1:+.1%}"))
     checks.append(relative(f"{tag}: runaway acceleration against the co-rotating (1 - f) a_0", a, est.model, 0.005,
                            "still approaching: g/(delta Omega^2) ~ 0.1 over the fit"))
     return checks
@@ -484,8 +484,12 @@ def regime_checks(maps: dict) -> list[Check]:
         tag = (f"aluminium at {alpha_deg:g} deg, {equations} model: share of {grid.size} starts from rest "
                "that run away")
         if rest:
-            checks.append(Check(tag, share, 0.5, 0.5, 0.0 < share < 1.0, "open-interval",
-                                "both outcomes occur: a rest point exists and the start selects"))
+            # a rest point exists, so the start selects: both outcomes must occur
+            one = 1.0 / grid.size
+            checks.append(at_most(f"{tag}, below 1: some rock", share, 1.0 - one,
+                                  f"s = {apparatus.s:.3f}: a rest point exists"))
+            checks.append(at_least(f"{tag}, above 0: some run away", share, one,
+                                   f"s = {apparatus.s:.3f}: a rest point exists"))
         else:
             checks.append(absolute(tag, share, 1.0, 0.0,
                                    f"s b/a = {apparatus.s * apparatus.b / apparatus.a:.3f} > 1: no rest point at "
@@ -513,9 +517,10 @@ def extremes(quick: bool) -> list[Check]:
         run = simulate_full(apparatus, closed_form(), Initial(0.0, 0.0), t_end)
         bad = sum(int(np.count_nonzero(~np.isfinite(v))) for v in run.columns.values())
         clear = run.status == "completed" or (run.status == "stopped" and run.event in ("gap_floor", "reynolds"))
-        checks.append(Check(f"full model from kappa0 = 0, {name}: non-finite values", bad, 0.0, 0.0,
-                            bad == 0 and clear, "exact",
-                            f"{run.status}: {run.reason}; regime {classify(run)[0]}"))
+        checks.append(absolute(f"full model from kappa0 = 0, {name}: non-finite values", bad, 0.0, 0.0,
+                               f"{run.status}: {run.reason}; regime {classify(run)[0]}"))
+        checks.append(absolute(f"full model from kappa0 = 0, {name}: completed or stopped at a stated limit "
+                               "(1 if so)", float(clear), 1.0, 0.0, run.reason))
     return checks
 
 
@@ -720,7 +725,7 @@ def run(outdir, quick: bool = False):
     checks += limit_checks(limit)
     level = level_plane((0.03, 0.01) if quick else (0.03, 0.01, 0.003))
     checks += level_plane_checks(level)
-    steep = full_runaway(STEEP, 4.0)
+    steep = full_runaway(STEEP, 5.0)
     paper_slope = full_runaway(5.0, 4.0)
     checks += full_runaway_checks(steep, paper_slope)
     kappas = (0.5, 0.99) if quick else (0.0, 0.5, 0.9, 0.99, 0.999)

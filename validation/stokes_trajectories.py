@@ -38,7 +38,7 @@ from dynamics.equations.forces import closed_form, stokes
 from dynamics.scenes import Initial
 from dynamics.simulate import Trajectory, simulate_full
 
-from .checks import Check, absolute
+from .checks import Check, absolute, at_least, at_most
 
 __all__ = ["APPARATUS_SLOPES_DEG", "OILS", "Pair", "figure", "pairs", "run", "simulate_pair", "table"]
 
@@ -211,13 +211,13 @@ def checks_of(results: list[Pair]) -> list[Check]:
     if rocking:
         widest = min(p.final("stokes", "one_minus_kappa") / p.final("closed-form", "one_minus_kappa")
                      for p in rocking)
-        checks.append(Check("both rock: smallest (1-kappa) at the end, Stokes / lubrication", widest, 1.0, 0.0,
-                            widest > 1.0, "lower-bound", f"{len(rocking)} cases; Stokes resists the squeeze more"))
+        checks.append(at_least("both rock: smallest (1-kappa) at the end, Stokes / lubrication", widest, 1.0,
+                               f"{len(rocking)} cases; Stokes resists the squeeze more"))
     thin = [p for p in rocking if not any(math.isnan(p.thin_gap_time(f)) for f in FORCES)]
     if thin:
         fastest = max(p.speed_ratio for p in thin)
-        checks.append(Check("both rock to 1-kappa=1e-3: largest mean speed ratio Stokes / lubrication", fastest,
-                            1.0, 0.0, fastest < 1.0, "upper-bound", f"{len(thin)} cases; Stokes drag is larger"))
+        checks.append(at_most("both rock to 1-kappa=1e-3: largest mean speed ratio Stokes / lubrication", fastest,
+                              1.0, f"{len(thin)} cases; Stokes drag is larger"))
     return checks
 
 

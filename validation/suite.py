@@ -18,6 +18,7 @@ from . import (
     model_choice_checks,
     stokes_trajectories,
 )
+from .checks import Check, Finding
 from .paper_claims import claims_table
 
 __all__ = ["GROUPS", "run_all"]
@@ -44,35 +45,49 @@ def _fmt(x) -> str:
 
 
 def run_all(outdir: str | Path, quick: bool = False) -> tuple[list, float]:
-    """Run all groups; write the JSON list of checks and the markdown report into ``outdir``."""
+    """Run all groups; write ``validation.json`` (the comparisons), ``findings.json`` and ``report.md``.
+
+    Only comparisons (:class:`~validation.checks.Check`) are counted; findings,
+    numbers reported without a verdict, are listed apart.
+    """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
-    checks, sections, summary = [], [], []
+    checks, findings, sections, summary = [], [], [], []
     for title, module in GROUPS.items():
         group_start = time.perf_counter()
-        group_checks, figures, text = module.run(outdir, quick=quick)
+        records, figures, text = module.run(outdir, quick=quick)
+        group_checks = [r for r in records if isinstance(r, Check)]
+        group_findings = [r for r in records if isinstance(r, Finding)]
         summary.append((title, sum(c.passed for c in group_checks), len(group_checks),
                         time.perf_counter() - group_start))
         checks.extend(group_checks)
+        findings.extend(group_findings)
         lines = [f"## {title}", "", text, "",
-                 "| check | measured | reference | tolerance | kind | passed |",
+                 "| check | kind | measured | reference | tolerance | passed |",
                  "|---|---|---|---|---|---|"]
-        lines += [f"| {c.name} | {_fmt(c.measured)} | {_fmt(c.reference)} | {_fmt(c.tolerance)} | "
-                  f"{c.kind} | {'yes' if c.passed else '**NO**'} |" for c in group_checks]
+        lines += [f"| {c.name} | {c.kind} | {_fmt(c.measured)} | {_fmt(c.reference)} | {_fmt(c.tolerance)} | "
+                  f"{'yes' if c.passed else '**NO**'} |" for c in group_checks]
+        if group_findings:
+            lines += ["", "Reported, not judged:", "", "| finding | value | note |", "|---|---|---|"]
+            lines += [f"| {f.name} | {_fmt(f.value)} | {f.note} |" for f in group_findings]
         lines += [""] + [f"![{name}]({name})" for name in figures]
         sections.append("\n".join(lines))
     seconds = time.perf_counter() - start
     failed = sum(not c.passed for c in checks)
-    passed = (f"{len(checks) - failed} of {len(checks)} checks passed in {seconds:.1f} s"
-              f"{' (quick subset)' if quick else ''}.")
+    passed = (f"{len(checks) - failed} of {len(checks)} comparisons passed in {seconds:.1f} s"
+              f"{' (quick subset)' if quick else ''}; {len(findings)} further numbers are reported without a "
+              "verdict. Each comparison's verdict follows from its kind, measured value, reference and "
+              "tolerance (validation.checks.verdict), so validation.json can be checked again from its "
+              "numbers alone.")
     head = ["# Validation report", "", passed, "",
-            "| group | checks passed | seconds |", "|---|---|---|"]
+            "| group | comparisons passed | seconds |", "|---|---|---|"]
     head += [f"| {title} | {ok} of {total} | {secs:.1f} |" for title, ok, total, secs in summary]
     intro = ("Each row paraphrases the paper (section and equation numbers of Balmforth, Bush, Vener & Young "
              "2007) and fills the measured column from this run's checks, listed in the sections below.")
     head += ["", "## The paper's statements and what this tool finds", "", intro, "",
-             claims_table(checks, quick=quick), ""]
+             claims_table(checks + findings, quick=quick), ""]
     write_json(outdir / "validation.json", [c.as_dict() for c in checks])
+    write_json(outdir / "findings.json", [f.as_dict() for f in findings])
     write_text(outdir / "report.md", "\n".join(head + sections) + "\n")
     return checks, seconds
