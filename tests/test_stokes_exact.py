@@ -709,3 +709,17 @@ def test_fe_agrees_near_contact(d):
     fe = fe_coefficients(d, kappa, *doubled_default_mesh(d))
     err = np.abs(fe / exact - 1.0)
     assert np.all(err < 1e-5), dict(zip(EXACT_NAMES, err))
+
+
+def test_docs_table_matches_kernel():
+    """docs/stokes_exact.md quotes the apparatus' ratios to 4 digits: they must be the kernel's."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "stokes_exact.md").read_text()
+    rows = [line.split("|")[1:-1] for line in text.splitlines() if line.startswith("| 0")]
+    assert [float(r[0]) for r in rows] == [0.0, 0.3, 0.6, 0.9, 0.99]
+    for r in rows:
+        kappa = float(r[0])
+        quoted = [float(x) for x in r[1:]]
+        np.testing.assert_allclose(stokes_exact_ratios(0.40625, kappa, 1.0 - kappa), quoted, rtol=0,
+                                   atol=5.01e-5)
