@@ -147,6 +147,14 @@ def test_digits_against_high_precision(d):
     assert worst < DIGITS_TOL, worst
 
 
+@pytest.mark.parametrize("d", [20.0, 100.0])
+def test_kernel_beyond_the_domain(d):
+    """delta/a > 10 (tau > 2.5 at small kappa): the direct differences replace the series, to 1e-14."""
+    for omk in (1.0 - 1e-3, 0.5, 1e-6):
+        exact = np.array(reference(1.0, d, omk)[0])
+        np.testing.assert_allclose(kernel(1.0, d, omk), exact, rtol=1e-14)
+
+
 @pytest.mark.parametrize("d", DIGIT_DELTAS)
 def test_digits_concentric(d):
     """At kappa = 0 the kernel matches the concentric closed forms to DIGITS_TOL (f_chi exactly 0)."""
