@@ -25,7 +25,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lubrication.closed_form import lubrication_forces
-from lubrication.geometry import RESISTANCE_NAMES, Annulus, Fluid, Motion
+from lubrication.geometry import (
+    MIN_ONE_MINUS_KAPPA,
+    RESISTANCE_NAMES,
+    Annulus,
+    Fluid,
+    Motion,
+)
 from lubrication.stokes_exact import (
     DELTA_OVER_A_RANGE,
     EXACT_NAMES,
@@ -417,10 +423,11 @@ def test_twin_reciprocity(d, kappa):
     W_a = W_b = -1/eps plus a rigid rotation, so dT_a/dV = -(R_t_a + R_t_b)/eps:
     the kernel's symmetric pair is R_chi_a = -(R_t_a + R_t_b)/eps, and likewise
     R_chi_b = -(R_b_a + R_b_b)/eps and R_t_b = R_b_a; and the drag along e_chi is
-    -(R_chi_a + R_chi_b)/eps.
+    -(R_chi_a + R_chi_b)/eps. Each flow also balances its torques about B:
+    T_a + T_b + eps F_y = 0.
     """
     _, f_a, t_aa, t_ba = twin_loads(d, kappa, w_a=1.0)
-    _, f_b, t_ab, _ = twin_loads(d, kappa, w_b=1.0)
+    _, f_b, t_ab, t_bb = twin_loads(d, kappa, w_b=1.0)
     _, f_v, t_av, t_bv = twin_loads(d, kappa, u_a=1j)
     scale = max(abs(f_a), abs(t_aa), abs(f_b))
     assert abs(t_ba - t_ab) < 1e-10 * scale
@@ -432,6 +439,9 @@ def test_twin_reciprocity(d, kappa):
     assert -(r[5] + r[6]) / eps == pytest.approx(t_bv, rel=1e-9)
     # the drag along e_chi: V with W_a = W_b = -V/eps is a rigid rotation, no load
     assert -(r[1] + r[3]) / eps == pytest.approx(f_v, rel=1e-9)
+    # no net torque on the fluid about B, for each of the three flows
+    for f_y, t_a, t_b in ((f_a, t_aa, t_ba), (f_b, t_ab, t_bb), (f_v, t_av, t_bv)):
+        assert abs(t_a + t_b + eps * f_y) < 1e-10 * scale
 
 
 @pytest.mark.parametrize("d, kappa", TWIN_CASES)
@@ -516,7 +526,7 @@ def test_contact_limits(d):
     """
     b = 1.0 + d
     limit = b ** np.array([1.5, 0.5, 0.5, 2.5, 1.5])
-    for omk in (1e-7, 1e-9):
+    for omk in (1e-7, 1e-9, 1e-30, MIN_ONE_MINUS_KAPPA):   # the kernel holds to the Annulus' limit
         dev = np.array(stokes_exact_ratios(d, 1.0 - omk, omk)) / limit - 1.0
         assert np.all(np.abs(dev) < 100.0 * omk + 1e-14), (omk, dev)
 
