@@ -73,6 +73,8 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from lubrication.stokes_tables import N_NODES, StokesTable
+
 from benchmarks.publish import RESULTS, publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
 from dynamics.apparatus import Apparatus, preset
@@ -83,7 +85,6 @@ from lubrication.files import save_figure, write_text
 from lubrication.forces import Resistance, fluid_forces, resistance
 from lubrication.geometry import Annulus, Fluid, Motion
 from lubrication.stokes import clear_cache, default_mesh
-from lubrication.stokes_tables import N_NODES, StokesTable
 
 DELTAS = (0.003, 0.01, 0.03, 0.1, 0.40625, 1.0)
 KAPPAS = (0.1, 0.5, 0.9, 0.98, 0.99)

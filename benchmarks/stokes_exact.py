@@ -42,6 +42,8 @@ import numpy as np
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from lubrication.stokes_tables import StokesTable, table_forces
+
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from lubrication._jit import jit
@@ -53,7 +55,6 @@ from lubrication.stokes_exact import (
     stokes_exact_ratios,
     stokes_exact_resistance,
 )
-from lubrication.stokes_tables import StokesTable, table_forces
 
 APPARATUS_GAP = 0.40625  # Table 2: a = 0.8 cm, b = 1.125 cm
 DELTAS = (0.01, APPARATUS_GAP)

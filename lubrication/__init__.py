@@ -1,32 +1,46 @@
 """Fluid force and torque on the inner of two eccentric cylinders.
 
-Geometry + motion + fluid -> (f_eps, f_chi, T_a), by the lubrication closed
-forms (2.5)-(2.7) of Balmforth, Bush, Vener & Young (J. Fluid Mech. 2007) or by
-solving the Reynolds equation numerically.
+Geometry + motion + fluid -> (f_eps, f_chi, T_a): by the lubrication closed
+forms (2.5)-(2.7) of Balmforth, Bush, Vener & Young (J. Fluid Mech. 2007), by
+solving the Reynolds equation numerically (with cavitation if asked), by the
+exact 2-D Stokes solution for circular walls, or by finite elements.
+
+    geometry.py        the annulus, the fluid, the motion, the forces
+    closed_form.py     (2.5)-(2.7)
+    reynolds.py        the Reynolds equation in the gap angle (kernels in _kernels.py)
+    cavitation.py      film rupture: half-Sommerfeld, Swift-Stieber, JFO
+    stokes_exact.py    the exact Stokes resistance of the eccentric annulus
+    stokes.py          Stokes flow by finite elements (flow fields, a check)
+    forces.py          one entry point for every model
+
+The names below are imported on first use, so that ``import lubrication`` is cheap.
 """
 
-from .cavitation import CAVITATION_MODELS, cavitating_forces, cavitating_pressure
-from .closed_form import closed_form_forces, lubrication_forces
-from .forces import MODELS, Resistance, fluid_forces, resistance
-from .geometry import Annulus, Fluid, FluidForces, Motion
-from .reynolds import GapProfile, ReynoldsPressure, reynolds_forces, reynolds_pressure
+from importlib import import_module
 
-__all__ = [
-    "CAVITATION_MODELS",
-    "MODELS",
-    "Annulus",
-    "Fluid",
-    "FluidForces",
-    "GapProfile",
-    "Motion",
-    "Resistance",
-    "ReynoldsPressure",
-    "cavitating_forces",
-    "cavitating_pressure",
-    "closed_form_forces",
-    "fluid_forces",
-    "lubrication_forces",
-    "reynolds_forces",
-    "reynolds_pressure",
-    "resistance",
-]
+_WHERE = {
+    "CAVITATION_MODELS": "cavitation", "cavitating_forces": "cavitation", "cavitating_pressure": "cavitation",
+    "closed_form_forces": "closed_form", "lubrication_forces": "closed_form",
+    "MODELS": "forces", "Resistance": "forces", "fluid_forces": "forces", "resistance": "forces",
+    "Annulus": "geometry", "Fluid": "geometry", "FluidForces": "geometry", "Motion": "geometry",
+    "RESISTANCE_NAMES": "geometry",
+    "GapProfile": "reynolds", "ReynoldsPressure": "reynolds", "reynolds_forces": "reynolds",
+    "reynolds_pressure": "reynolds",
+    "ExactResistance": "stokes_exact", "exact_forces": "stokes_exact", "exact_resistance": "stokes_exact",
+    "stokes_exact_forces": "stokes_exact",
+}
+
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        value = getattr(import_module(f".{_WHERE[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    msg = f"module {__name__!r} has no attribute {name!r}"
+    raise AttributeError(msg)
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-from dataclasses import astuple, dataclass
-
 from .cavitation import cavitating_forces
 from .closed_form import closed_form_forces
-from .geometry import RESISTANCE_NAMES, Annulus, Fluid, FluidForces, Motion
+from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance
 from .reynolds import reynolds_forces
+from .stokes_exact import exact_forces
 
 __all__ = ["MODELS", "Resistance", "fluid_forces", "resistance"]
 
-MODELS = ("closed-form", "reynolds", "stokes")
+MODELS = ("closed-form", "reynolds", "stokes-exact", "stokes")
 
 
 def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "closed-form",
@@ -20,12 +19,13 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
 
     Parameters
     ----------
-    model : {"closed-form", "reynolds", "stokes"}
+    model : {"closed-form", "reynolds", "stokes-exact", "stokes"}
         Lubrication closed forms (2.5)-(2.7), the numerical Reynolds solver
         (``options`` go to :func:`lubrication.reynolds.reynolds_forces`; with
         ``cavitation`` other than "none", and ``p_cav``, ``p_ref``, to
-        :func:`lubrication.cavitation.cavitating_forces`), or the
-        finite-element Stokes solve at any gap width (``options`` set its mesh,
+        :func:`lubrication.cavitation.cavitating_forces`), the exact 2-D
+        Stokes solution for circular walls (:mod:`lubrication.stokes_exact`,
+        no options), or the finite-element Stokes solve at any gap width (``options`` set its mesh,
         see :func:`lubrication.stokes.stokes_forces`; needs the ``fem`` extra).
     """
     if model == "closed-form":
@@ -38,34 +38,17 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
         if cavitation != "none":
             return cavitating_forces(annulus, motion, fluid, cavitation, **options)
         return reynolds_forces(annulus, motion, fluid, **options)
+    if model == "stokes-exact":
+        if options:
+            msg = f"the stokes-exact model takes no options, got {', '.join(sorted(options))}"
+            raise ValueError(msg)
+        return exact_forces(annulus, motion, fluid)
     if model == "stokes":
         from .stokes import stokes_forces  # scikit-fem is an optional extra
 
         return stokes_forces(annulus, motion, fluid, **options)
     msg = f"model must be one of {', '.join(MODELS)}, got {model!r}"
     raise ValueError(msg)
-
-
-@dataclass(frozen=True)
-class Resistance:
-    """The five resistance coefficients of the inner cylinder, whole length.
-
-    By linearity and the reflection symmetry about the line of centres, a
-    full-film force model is fixed by: f_eps per eps' (N s/m), and f_chi
-    (N s) and T_a (N m s) per unit rotation W_a = Omega_a - chi' and
-    W_b = Omega_b - chi'. Radial motion gives no f_chi or T_a, rotations no f_eps.
-    """
-
-    f_eps_per_eps_dot: float
-    f_chi_per_w_a: float
-    t_a_per_w_a: float
-    f_chi_per_w_b: float
-    t_a_per_w_b: float
-
-    NAMES = RESISTANCE_NAMES
-
-    def as_tuple(self) -> tuple[float, ...]:
-        return astuple(self)
 
 
 def resistance(annulus: Annulus, fluid: Fluid, model: str = "closed-form", **options) -> Resistance:

@@ -13,10 +13,10 @@ about A, positive in the same sense as the rotations.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import astuple, dataclass, field
 
-__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "RESISTANCE_NAMES", "check_finite",
-           "check_range"]
+__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "RESISTANCE_NAMES", "Resistance",
+           "check_finite", "check_range"]
 
 #: The five resistance coefficients of a full film, in the order every table and array of
 #: the project uses: f_eps per eps', then f_chi and T_a per W_a = Omega_a - chi', then
@@ -175,3 +175,25 @@ class FluidForces:
 
     def as_tuple(self) -> tuple[float, float, float]:
         return (self.f_eps, self.f_chi, self.T_a)
+
+
+@dataclass(frozen=True)
+class Resistance:
+    """The five resistance coefficients of the inner cylinder, whole length.
+
+    By linearity and the reflection symmetry about the line of centres, a
+    full-film force model is fixed by: f_eps per eps' (N s/m), and f_chi
+    (N s) and T_a (N m s) per unit rotation W_a = Omega_a - chi' and
+    W_b = Omega_b - chi'. Radial motion gives no f_chi or T_a, rotations no f_eps.
+    """
+
+    f_eps_per_eps_dot: float
+    f_chi_per_w_a: float
+    t_a_per_w_a: float
+    f_chi_per_w_b: float
+    t_a_per_w_b: float
+
+    NAMES = RESISTANCE_NAMES
+
+    def as_tuple(self) -> tuple[float, ...]:
+        return astuple(self)

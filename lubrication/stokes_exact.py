@@ -212,8 +212,7 @@ import math
 from dataclasses import astuple, dataclass
 
 from ._jit import jit
-from .forces import Resistance
-from .geometry import Annulus, Fluid, FluidForces, Motion
+from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance
 
 __all__ = ["DELTA_OVER_A_RANGE", "EXACT_NAMES", "MIN_ONE_MINUS_KAPPA_EXACT", "ExactResistance",
            "exact_forces", "exact_ratios", "exact_resistance", "stokes_exact_forces",

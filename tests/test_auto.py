@@ -61,7 +61,7 @@ def test_the_study_records_where_and_when_it_was_measured():
 def test_force_choice_differs_between_thin_gap_and_apparatus():
     thin = choose_forces(SEPARATING, THIN, 0.99)
     wide = choose_forces(SEPARATING, APPARATUS, 0.99)
-    assert thin.model == "closed-form" and wide.model == "stokes"
+    assert thin.model == "closed-form" and wide.model == "stokes-exact"
     assert thin.error <= SEPARATING and wide.error <= SEPARATING
     assert "cheapest" in thin.reason and "meets the tolerance" in wide.reason
 
@@ -103,7 +103,7 @@ def test_a_looser_tolerance_never_costs_more(delta):
 
 def stored_errors(choice: Choice) -> list[list[float]]:
     """The study's error grid (delta/a x kappa) of the chosen force model."""
-    name = {"stokes": "stokes-table"}.get(choice.model, choice.model)
+    name = {"stokes-exact": "stokes-table"}.get(choice.model, choice.model)
     return next(e["error"] for e in study()["forces"] if e["model"] == name and e["options"] == choice.options)
 
 
@@ -128,14 +128,14 @@ def test_the_kappa_band_includes_the_first_measured_kappa_above_kappa_max():
 
 def test_an_unmeetable_tolerance_takes_the_most_accurate_and_says_so():
     c = choose_forces(1e-12, THIN, 0.99)
-    assert c.model == "stokes" and c.error > 1e-12
+    assert c.model == "stokes-exact" and c.error > 1e-12
     assert "no force model meets" in c.reason
 
 
 def test_beyond_the_study_the_choice_is_conservative_and_says_why():
     largest = max(study()["deltas"])
     forces = choose_forces(0.5, 3 * largest, 0.5)
-    assert forces.model == "stokes" and "beyond the study" in forces.reason
+    assert forces.model == "stokes-exact" and "beyond the study" in forces.reason
     equations = choose_equations(0.5, 3 * max(study()["equations"]["deltas"]))
     assert equations.model == "full" and "beyond the study" in equations.reason
 
@@ -171,16 +171,16 @@ def test_chosen_closed_forms_meet_the_tolerance_against_stokes(kappa):
 
 @pytest.mark.slow
 @pytest.mark.parametrize(("tolerance", "delta"), [(1e-2, APPARATUS), (1e-4, THIN)])
-def test_chosen_stokes_table_meets_the_tolerance_against_a_finite_element_solve(tolerance, delta):
+def test_chosen_stokes_forces_meet_the_tolerance_against_a_finite_element_solve(tolerance, delta):
     from dynamics.equations.forces import force_model
     from lubrication.geometry import Motion
     from lubrication.stokes import default_mesh
 
     choice = choose_forces(tolerance, delta, 0.99)
-    assert choice.model == "stokes"
-    model = force_model("stokes", delta_over_a=delta, **choice.options)
-    n_around, n_across = default_mesh(delta)  # the table's mesh, refined by 1.5 for the truth
-    for kappa in (0.42, 0.97):  # between table nodes
+    assert choice.model == "stokes-exact"
+    model = force_model(choice.model, **choice.options)
+    n_around, n_across = default_mesh(delta)  # the default mesh refined by 1.5, for the truth
+    for kappa in (0.42, 0.97):
         annulus, truth = stokes_truth(delta, kappa, n_around=round(1.5 * n_around),
                                       n_across=round(1.5 * n_across))
         unit = [model.forces(annulus, Motion(**{k: 1.0}), FLUID) for k in ("eps_dot", "omega_a", "omega_b")]
@@ -214,7 +214,7 @@ def test_scene_resolution_differs_between_the_gaps():
     thin, thin_record = resolve_model(parse_scene(groups_scene(THIN)))
     wide, wide_record = resolve_model(parse_scene(groups_scene(0.41)))
     assert (thin.equations, thin.forces) == ("full", "closed-form")
-    assert (wide.equations, wide.forces) == ("full", "stokes")
+    assert (wide.equations, wide.forces) == ("full", "stokes-exact")
     assert thin_record["kappa_max"] == near_contact_kappa()
     assert thin_record["forces"]["reason"] and wide_record["forces"]["reason"]
 
@@ -245,7 +245,7 @@ t_end = "1 s"
 """)
     model, record = resolve_model(scene)
     assert model.equations == "full"  # reduced error 0.66 at delta/a = 0.406 exceeds 1e-2
-    assert "exceeds the tolerance" in record["equations"]["reason"] and model.forces == "stokes"
+    assert "exceeds the tolerance" in record["equations"]["reason"] and model.forces == "stokes-exact"
 
 
 def test_snail_run_records_the_choice_in_the_summary(tmp_path, capsys):
@@ -269,7 +269,7 @@ def test_snail_run_chooses_differently_at_the_apparatus_gap(tmp_path, capsys):
         assert main(["run", str(path), "-o", str(out)]) == 0
         chosen[delta] = json.loads((out / "summary.json").read_text())["model_choice"]["forces"]["model"]
     capsys.readouterr()
-    assert chosen == {THIN: "closed-form", 0.41: "stokes"}
+    assert chosen == {THIN: "closed-form", 0.41: "stokes-exact"}
 
 
 def test_snail_forces_auto_says_what_it_chose_and_why(capsys):

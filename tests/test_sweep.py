@@ -117,7 +117,7 @@ def test_a_failing_point_is_recorded_and_the_sweep_goes_on(tmp_path, scheduler):
 
 def test_a_failed_trajectory_is_failed_with_the_numbers_it_reached():
     columns = {"t_tau": [0.0, 1.0, 2.0], "phi": [0.0, 0.1, 0.2], "kappa": [0.5, 0.6, 0.7],
-               "omega_b": [0.0, 0.1, 0.2]}
+               "one_minus_kappa": [0.5, 0.4, 0.3], "omega_b": [0.0, 0.1, 0.2]}
     trajectory = Trajectory(columns={k: np.array(v) for k, v in columns.items()},
                             equations="reduced", forces="closed-form", status="failed", reason="step failed",
                             event="", steps=2, nfev=9, njev=1, wall_time_s=0.0, tau=1.0, dimensionless=True,

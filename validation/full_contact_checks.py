@@ -114,7 +114,7 @@ def apparatus_speeds(quick: bool) -> dict:
            "phase_reduced": reduced.phase}
     models = {"closed-form": closed_form()}
     if not quick:
-        models["stokes"] = force_model("stokes", delta_over_a=ap.delta_over_a)
+        models["stokes"] = force_model("stokes-exact")
     for name, forces in models.items():
         run = simulate_full_contact(ap, forces, rough, Initial(kappa=kappa_star, phi=math.pi), 3000.0 * ap.tau,
                                     rtol=1e-9)

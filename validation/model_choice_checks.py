@@ -77,12 +77,12 @@ def force_errors(tolerance: float, delta: float, kappas) -> tuple:
 
 def equations_error(delta: float) -> float:
     """Relative error of (X_b, 1 - kappa) after T_END_TAU of the reduced equations against the full
-    equations with Stokes-table forces, at ``delta`` with the steel apparatus' groups."""
+    equations with exact Stokes forces, at ``delta`` with the steel apparatus' groups."""
     steel = preset("steel")
     app = Apparatus.from_groups(steel.s, steel.upsilon, steel.mu_ratio, delta)
     release = Initial(kappa=0.5, phi=0.5)
     reduced = simulate_reduced(app.reduced_params, release, T_END_TAU, apparatus=app, rtol=1e-10)
-    full = simulate_full(app, forcemodels.stokes(delta), release, T_END_TAU * app.tau, rtol=1e-10)
+    full = simulate_full(app, forcemodels.stokes_exact(), release, T_END_TAU * app.tau, rtol=1e-10)
     r, f = reduced.columns, full.columns
     return max(abs(r["x_b"][-1] - f["x_b"][-1]) / abs(f["x_b"][-1]),
                abs(r["one_minus_kappa"][-1] - f["one_minus_kappa"][-1]) / f["one_minus_kappa"][-1])

@@ -2,8 +2,8 @@ r"""How much do trajectories change when the lubrication forms are replaced by f
 
 The paper's apparatus is not thin: delta/a = 0.406 for both the steel and the
 aluminium device. The closed forms (2.5)-(2.7) are the leading order in delta/a;
-the full Stokes forces of :func:`dynamics.equations.forces.stokes` (interpolated in a
-resistance table built with the finite-element solver) hold at any delta/a. Here the
+the exact 2-D Stokes forces of :func:`dynamics.equations.forces.stokes_exact` hold at
+any delta/a. Here the
 full model (2.1)-(2.4) is integrated with both, from the same start (kappa = 0.5,
 phi = 0.5, at rest), for the paper's oils (50, 200 and 500 cSt) and slopes, for
 ``T_END`` seconds or until the gap Reynolds number reaches its limit (a runaway).
@@ -34,7 +34,7 @@ import numpy as np
 
 from dynamics.app.regime import classify
 from dynamics.apparatus import preset
-from dynamics.equations.forces import closed_form, stokes
+from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.scenes import Initial
 from dynamics.simulate import Trajectory, simulate_full
 
@@ -130,15 +130,9 @@ def simulate_pair(name: str, nu: float, slope_deg: float, models: dict, t_end: f
 
 
 def pairs(cases) -> list[Pair]:
-    """One :class:`Pair` per (apparatus, nu, slope) in ``cases``, with one Stokes table per delta/a."""
-    tables = {}
-    out = []
-    for name, nu, slope in cases:
-        delta_over_a = preset(name).delta_over_a
-        if delta_over_a not in tables:
-            tables[delta_over_a] = stokes(delta_over_a)
-        out.append(simulate_pair(name, nu, slope, {"closed-form": closed_form(), "stokes": tables[delta_over_a]}))
-    return out
+    """One :class:`Pair` per (apparatus, nu, slope) in ``cases``."""
+    models = {"closed-form": closed_form(), "stokes": stokes_exact()}
+    return [simulate_pair(name, nu, slope, models) for name, nu, slope in cases]
 
 
 def _cases(quick: bool) -> list[tuple[str, float, float]]:
@@ -225,8 +219,8 @@ def _paragraph(results: list[Pair]) -> str:
     changed = [p for p in results if p.regime("closed-form") != p.regime("stokes")]
     rocking = [p for p in results if p.both_rock]
     lines = [(f"Full-model trajectories of the paper's apparatus (delta/a = 0.406) from kappa = 0.5, phi = 0.5 at "
-             f"rest, with the lubrication closed forms (2.5)-(2.7) (L) and with full Stokes forces from the "
-             f"resistance table (S), for {T_END:g} s or until the gap Reynolds number reaches its limit. The speed "
+             f"rest, with the lubrication closed forms (2.5)-(2.7) (L) and with the exact Stokes forces "
+             f"(S), for {T_END:g} s or until the gap Reynolds number reaches its limit. The speed "
              f"ratio is that of the mean speeds over the time both runs cover.")]
     if rocking:
         ratios = [p.speed_ratio for p in rocking]

@@ -36,7 +36,8 @@ __all__ = ["Choice", "choose_equations", "choose_forces", "near_contact_kappa", 
 
 #: Force models of the study and the name the equations of motion know them by
 #: (:func:`dynamics.equations.forces.force_model`).
-_ADAPTER = {"closed-form": "closed-form", "reynolds": "reynolds", "stokes-table": "stokes"}
+_ADAPTER = {"closed-form": "closed-form", "reynolds": "reynolds", "stokes-table": "stokes-exact"}
+_STUDY_KEY = {"closed-form": "closed-form", "stokes-exact": "stokes"}
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,11 @@ def _kappa_band(kappa_max: float, kappas: list[float]) -> tuple[list[int], str]:
     return band, phrase
 
 
+def _adapter_options(entry: dict) -> dict:
+    """The options of a study entry that its force-model adapter takes (the Reynolds grid's)."""
+    return dict(entry["options"]) if entry["model"] == "reynolds" else {}
+
+
 def _label(model: str, options: dict) -> str:
     return model + ("" if not options else " (" + ", ".join(f"{k} = {v}" for k, v in options.items()) + ")")
 
@@ -158,7 +164,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
         last = len(data["deltas"]) - 1
         best = min(candidates, key=lambda e: max(e["error"][last][k] for k in band))
         error = max(best["error"][last][k] for k in band)
-        return Choice(_ADAPTER[best["model"]], dict(best["options"]), error,
+        return Choice(_ADAPTER[best["model"]], _adapter_options(best), error,
                       max(best["jit_s"][last][k] for k in band),
                       f"delta/a = {delta_over_a:g} is beyond the study (largest {data['deltas'][-1]:g}), so "
                       f"the most accurate measured model there, {_label(best['model'], best['options'])} "
@@ -184,7 +190,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
         e, error, cost = min(measured, key=lambda m: m[1])
         reason = (f"no force model meets the tolerance {tolerance:g} at {where}, {kappa_phrase}; "
                   f"{_label(e['model'], e['options'])} is the most accurate measured, error {error:.1e}")
-    return Choice(_ADAPTER[e["model"]], dict(e["options"]), error, cost, reason)
+    return Choice(_ADAPTER[e["model"]], _adapter_options(e), error, cost, reason)
 
 
 def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto") -> Choice:
@@ -210,7 +216,8 @@ def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto"
         msg = f"forces must be 'auto' or 'closed-form' (the reduced equations' own), got {forces!r}"
         raise ValueError(msg)
     eq = study()["equations"]
-    full_forces = "stokes" if forces == "auto" else "closed-form"
+    # the study's rows for the full equations are keyed by the force model they were run with
+    full_forces = _STUDY_KEY.get("stokes-exact" if forces == "auto" else "closed-form")
     rows, where = _bracket(delta_over_a, eq["deltas"])
     if not rows:
         last = len(eq["deltas"]) - 1

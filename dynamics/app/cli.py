@@ -70,9 +70,12 @@ def _add_forces(subparsers) -> None:
         "forces", help="fluid force and torque on the inner cylinder",
         description="Fluid force f_eps, f_chi (N) and torque T_a (N m) on the inner cylinder, "
                     "whole length, for one instant. SI units throughout.")
-    p.add_argument("--model", default="closed-form", choices=["closed-form", "reynolds", "stokes", "all", "auto"],
-                   help="force model (default closed-form); all: every model and their differences "
-                        "(stokes needs the fem extra); auto: the cheapest whose measured error meets --tolerance")
+    p.add_argument("--model", default="closed-form",
+                   choices=["closed-form", "reynolds", "stokes-exact", "stokes", "all", "auto"],
+                   help="force model (default closed-form): the lubrication forms (2.5)-(2.7), the Reynolds "
+                        "solver, the exact 2-D Stokes solution, or Stokes by finite elements (needs the fem "
+                        "extra); all: every model and its differences from the exact Stokes forces; auto: the "
+                        "cheapest whose measured error meets --tolerance")
     p.add_argument("--tolerance", type=_number, default=1e-2,
                    help="auto: largest acceptable relative error of the forces, in (0, 1), default 1e-2")
     p.add_argument("--a", type=_number, required=True, help="inner radius (m)")
@@ -161,7 +164,7 @@ def _run_forces(args) -> int:
         motion = Motion(eps_dot=args.eps_dot, chi_dot=args.chi_dot,
                         omega_a=args.omega_a, omega_b=args.omega_b)
         fluid = Fluid(nu=args.nu, rho=args.rho)
-        options = {"closed-form": {},
+        options = {"closed-form": {}, "stokes-exact": {},
                    "reynolds": {"n": args.n, "grid": args.grid, "profile": args.profile,
                                 **({"cavitation": args.cavitation, "p_cav": args.p_cav, "p_ref": args.p_ref}
                                    if args.cavitation != "none" else {})},
@@ -171,7 +174,7 @@ def _run_forces(args) -> int:
         if args.model == "auto":
             return _run_auto_forces(args, annulus, motion, fluid)
         models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (
-            ["stokes"] if _has_fem() else [])
+            ["stokes"] if _has_fem() else []) + ["stokes-exact"]
         results = []
         for model in models:
             # Stokes caches its factorisation: a warm-up call would hide its real cost
@@ -189,7 +192,7 @@ def _run_forces(args) -> int:
     if len(results) == 1:
         out = results[0][1]
     else:
-        # the most complete model computed is the reference: Stokes at any gap, else Reynolds
+        # the exact Stokes forces are the reference: every other model approximates them
         ref = results[-1][0]
         for f, row in results:
             row["relative_difference"] = _relative_differences(f, ref)
@@ -209,8 +212,7 @@ def _run_auto_forces(args, annulus, motion, fluid) -> int:
     from dynamics.equations.forces import force_model
 
     choice = choose_forces(args.tolerance, annulus.delta_over_a, annulus.kappa)
-    options = dict(choice.options, **({"delta_over_a": annulus.delta_over_a} if choice.model == "stokes" else {}))
-    model = force_model(choice.model, **options)
+    model = force_model(choice.model, **choice.options)
     f, seconds = _timed(lambda: model.forces(annulus, motion, fluid), warm_up=True)
     out = {"model": "auto", "chosen_model": choice.model, "options": choice.options, "reason": choice.reason,
            "tolerance": args.tolerance, "measured_error": choice.error,
@@ -260,9 +262,9 @@ def _add_run(subparsers) -> None:
     p.add_argument("-o", "--output", default="snail-output", help="output folder (default snail-output)")
     p.add_argument("--t-end", help="run length: seconds, or a string with units such as '2 min'")
     p.add_argument("--model", choices=["full", "reduced", "auto"], help="equations of motion, overriding the scene")
-    p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes", "auto"],
-                   help="force model, overriding the scene (stokes: tabulated, built once per delta/a; "
-                        "auto: the cheapest meeting model.tolerance)")
+    p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes-exact", "stokes", "auto"],
+                   help="force model, overriding the scene (stokes-exact: the exact 2-D Stokes forces, which "
+                        "'stokes' also names in a run; auto: the cheapest meeting model.tolerance)")
     p.add_argument("--method", default="LSODA", choices=["LSODA", "BDF", "Radau"],
                    help="scipy integrator (default LSODA)")
     p.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",

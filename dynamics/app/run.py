@@ -64,8 +64,7 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
         return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
                                 apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
                                 progress=progress)
-    options = {"closed-form": {}, "reynolds": {"n": model.n, "grid": model.grid},
-               "stokes": {"delta_over_a": scene.apparatus.delta_over_a}}[model.forces]
+    options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
     if cavitation is not None:
         options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
     forces = force_model(model.forces, **options)

@@ -115,7 +115,7 @@ def friction_coefficient(apparatus, contact: ContactParams) -> float:
 
 @jit
 def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat,
-                  profile, sommerfeld, rule, points_per_cell, table, cavitation):
+                  profile, sommerfeld, rule, points_per_cell, exact, cavitation):
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).
 
     ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N.
@@ -125,7 +125,7 @@ def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat,
     chi, chi_dot, omega_a, omega_b = y[0], y[1], y[2], y[3]
     ex, ez = math.sin(chi), math.cos(chi)
     cx, cz = ez, -ex
-    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, p[3],
+    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, p[3],
                                  p[2], kappa_star, omk_star, 0.0, omega_a - chi_dot, omega_b - chi_dot)
     fluid = full.force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
     gravity = full.gravity_response(p)

@@ -20,11 +20,11 @@ from lubrication.cavitation import CAVITATION_MODELS
 from lubrication.closed_form import lubrication_forces
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
-from lubrication.stokes_tables import StokesTable, table_forces
+from lubrication.stokes_exact import stokes_exact_resistance
 
-__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "evaluate", "force_model", "reynolds", "stokes"]
+__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "evaluate", "force_model", "reynolds", "stokes_exact"]
 
-FORCE_MODELS = ("closed-form", "reynolds", "stokes")
+FORCE_MODELS = ("closed-form", "reynolds", "stokes-exact", "stokes")
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,7 @@ class ForceModel:
     Attributes
     ----------
     name : str
-        "closed-form", "reynolds", "reynolds/<cavitation model>" or "stokes".
+        "closed-form", "reynolds", "reynolds/<cavitation model>" or "stokes-exact".
     profile : int
         Gap profile of the Reynolds kernel (thin or eccentric).
     sommerfeld : bool
@@ -44,8 +44,10 @@ class ForceModel:
         of the Reynolds grid; None for the closed forms and Stokes.
     points_per_cell : int
         Gauss points per cell of the Reynolds grid.
-    table : tuple of ndarray or None
-        (zeta_nodes, node_ratios, contact) of a Stokes resistance table.
+    exact : ndarray or None
+        For the exact Stokes forces: factors on the five resistance coefficients
+        (:data:`lubrication.geometry.RESISTANCE_NAMES` order), ones for an
+        annulus of infinite length.
     cavitation : tuple or None
         (model code in CAVITATION_MODELS, p_cav, p_ref) of a cavitating Reynolds film.
     options : dict
@@ -57,13 +59,13 @@ class ForceModel:
     sommerfeld: bool = True
     rule: tuple | None = None
     points_per_cell: int = 1
-    table: tuple | None = None
+    exact: np.ndarray | None = None
     cavitation: tuple | None = None
     options: dict = field(default_factory=dict)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
-        f = evaluate(self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.table, self.cavitation,
+        f = evaluate(self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.exact, self.cavitation,
                      annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
                      annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
@@ -100,42 +102,47 @@ def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", point
                       options={**options, "cavitation": cavitation, "p_cav": p_cav, "p_ref": p_ref})
 
 
-def stokes(delta_over_a: float, **table_options) -> ForceModel:
-    """Full Stokes forces at the annulus' delta/a, interpolated in a resistance table.
-
-    The table is built once per delta/a with the finite-element solver (a minute or so)
-    and cached; ``table_options`` go to :meth:`lubrication.stokes_tables.StokesTable.load`.
-    """
-    table = StokesTable.load(delta_over_a, **table_options)
-    return ForceModel("stokes", table=tuple(table.arrays),
-                      options={"delta_over_a": delta_over_a, **table_options})
+def stokes_exact() -> ForceModel:
+    """The exact 2-D Stokes forces of circular walls (:mod:`lubrication.stokes_exact`), at any delta/a."""
+    return ForceModel("stokes-exact", exact=np.ones(5))
 
 
 def force_model(name: str, **options) -> ForceModel:
-    """The adapter for ``name`` ("closed-form", "reynolds" or "stokes")."""
+    """The adapter for ``name`` (:data:`FORCE_MODELS`).
+
+    "stokes" names the full Stokes forces, which for circular walls are known
+    exactly: it is "stokes-exact" (the finite-element solver, too slow for an
+    integrator step, checks them; :mod:`lubrication.stokes`).
+    """
     if name == "closed-form":
         return closed_form()
     if name == "reynolds":
         return reynolds(**options)
-    if name == "stokes":
-        return stokes(**options)
+    if name in ("stokes-exact", "stokes"):
+        if options:
+            msg = f"the {name} forces take no options, got {', '.join(sorted(options))}"
+            raise ValueError(msg)
+        return stokes_exact()
     msg = f"forces must be one of {', '.join(FORCE_MODELS)}, got {name!r}"
     raise ValueError(msg)
 
 
 @jit
-def evaluate(profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, mu, length,
+def evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, mu, length,
              kappa, omk, eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m) of the model whose data are given; see :class:`ForceModel`.
 
-    A Stokes table if ``table`` is given, else the closed forms if ``rule`` is
-    None, else the Reynolds film, cavitating if ``cavitation`` is given. The
-    tests are on None, which numba resolves when it compiles.
+    The exact Stokes forces if ``exact`` is given (scaled coefficient by
+    coefficient), else the closed forms if ``rule`` is None, else the Reynolds
+    film, cavitating if ``cavitation`` is given. The tests are on None, which
+    numba resolves when it compiles.
     """
-    if table is not None:
-        zeta_nodes, node_ratios, contact = table
-        return table_forces(zeta_nodes, node_ratios, contact, a, b - a, mu, length, kappa, omk,
-                            eps_dot, w_a, w_b)
+    if exact is not None:
+        r = stokes_exact_resistance(a, b - a, mu, kappa, omk)
+        f_eps = length * exact[0] * r[0] * eps_dot
+        f_chi = length * (exact[1] * r[1] * w_a + exact[3] * r[3] * w_b)
+        t_a = length * (exact[2] * r[2] * w_a + exact[4] * r[4] * w_b)
+        return f_eps, f_chi, t_a
     if rule is None:
         return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)

@@ -116,7 +116,7 @@ def gravity_response(p):
 
 
 @jit
-def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation):
+def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation):
     """dy/dt of the full model; ``p`` from :func:`params_array`, the model from a ForceModel."""
     a, b = p[_A], p[_B]
     delta = b - a
@@ -124,7 +124,7 @@ def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation):
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
     eps_dot = ex * vx + ez * vz
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
-    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, table, cavitation, a, b, p[_MU],
+    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, p[_MU],
                                  p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot, omega_b - chi_dot)
     fluid = force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
     gravity = gravity_response(p)
@@ -140,7 +140,7 @@ def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation):
 
 
 @jit
-def jacobian(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitation, typical):
+def jacobian(t, y, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation, typical):
     """d(rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
@@ -153,9 +153,9 @@ def jacobian(t, y, p, profile, sommerfeld, rule, points_per_cell, table, cavitat
     for j in range(n):
         h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
         yp[j] = y[j] + h
-        up = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, table, cavitation)
+        up = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation)
         yp[j] = y[j] - h
-        down = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, table, cavitation)
+        down = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation)
         yp[j] = y[j]
         for i in range(n):
             jac[i, j] = (up[i] - down[i]) / (2.0 * h)
@@ -208,4 +208,4 @@ def observables(apparatus, y: np.ndarray) -> dict[str, np.ndarray]:
 def model_arguments(force_model: ForceModel) -> tuple:
     """The trailing arguments of :func:`rhs` and :func:`jacobian` that select the force model."""
     return (force_model.profile, force_model.sommerfeld, force_model.rule,
-            force_model.points_per_cell, force_model.table, force_model.cavitation)
+            force_model.points_per_cell, force_model.exact, force_model.cavitation)

@@ -42,7 +42,7 @@ __all__ = [
 ]
 
 EQUATIONS = ("full", "reduced", "auto")
-FORCES = ("closed-form", "reynolds", "stokes", "auto")
+FORCES = ("closed-form", "reynolds", "stokes-exact", "stokes", "auto")
 CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
 
 _DEG = math.pi / 180.0
@@ -86,7 +86,8 @@ class Model:
     equations: str = key("full", help="'full' (2.1)-(2.4), 'reduced' (2.11), or 'auto' (the cheapest that "
                                       "meets model.tolerance)", choices=EQUATIONS)
     forces: str = key("closed-form", help="'closed-form' (2.5)-(2.7), 'reynolds' (the Reynolds solver), "
-                                          "'stokes' (finite elements, tabulated) or 'auto'", choices=FORCES)
+                                          "'stokes-exact' (exact 2-D Stokes; 'stokes' is the same) or 'auto'",
+                      choices=FORCES)
     tolerance: float = key(0.01, help="relative error 'auto' may accept (measured)", low=0.0, high=1.0,
                            bounds="()")
     n: int = key(16, help="Reynolds solver: cells around the gap (exact thin-gap forces from 8)",
