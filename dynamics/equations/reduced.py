@@ -70,10 +70,13 @@ from dynamics.equations.limits import (
     runaway_event,
 )
 from dynamics.integrate import integrate
+from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
 
 __all__ = [
     "ReducedParams",
+    "jacobian",
+    "rhs",
     "ReducedTrajectory",
     "STATE_NAMES",
     "initial_state",
@@ -112,6 +115,11 @@ class ReducedParams:
                                                         low_open=True))
         object.__setattr__(self, "mu_ratio", check_range("mu_ratio", self.mu_ratio, 0.0, math.inf,
                                                          low_open=True))
+
+    @property
+    def args(self) -> tuple[float, float, float]:
+        """(s, Upsilon, mu_): the groups as the compiled right-hand side takes them."""
+        return (self.s, self.upsilon, self.mu_ratio)
 
 
 def stretched_to_kappa(r):
@@ -165,43 +173,47 @@ def initial_state(kappa0: float | None, phi0: float, omega_a0: float = 0.0, omeg
                      check_finite("x_b0", x_b0)])
 
 
-def reduced_rhs(t: float, y, params: ReducedParams) -> np.ndarray:
-    """Right-hand side of (2.11a-d) in the stretched Cartesian variables.
+@jit
+def rhs(t, y, args):
+    """Right-hand side of (2.11a-d) in the stretched Cartesian variables (module docstring).
 
     Parameters
     ----------
     t : float
         Time in units of tau (the system is autonomous).
-    y : array_like, shape (5,)
+    y : ndarray, shape (5,)
         State (xi, eta, Omega_a, Omega_b, X_b), see :data:`STATE_NAMES`.
-    params : ReducedParams
+    args : tuple
+        (s, Upsilon, mu_, ...): :meth:`ReducedParams.args` and what the run's
+        events need after them.
 
     Returns
     -------
     ndarray, shape (5,)
-        dy/dt; the derivation is in the module docstring.
     """
+    s, ups, mu_ = args[0], args[1], args[2]
     xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
     rho2 = 1.0 + xi * xi + eta * eta
     rho = math.sqrt(rho2)
     w = 0.5 * (omega_a + omega_b)
     d = omega_b - omega_a
-    ups = params.upsilon
-    return np.array([
-        eta * w + 0.5 * xi * eta / rho2,
-        -xi * w - 1.0 - 0.5 * xi * xi / rho2,
-        (d * rho / 3.0 + xi / rho) / ups,
-        (params.s + 0.5 * xi / rho - d * rho / 6.0) / (params.mu_ratio * ups),
-        omega_b,
-    ])
+    out = np.empty(5)
+    out[0] = eta * w + 0.5 * xi * eta / rho2
+    out[1] = -xi * w - 1.0 - 0.5 * xi * xi / rho2
+    out[2] = (d * rho / 3.0 + xi / rho) / ups
+    out[3] = (s + 0.5 * xi / rho - d * rho / 6.0) / (mu_ * ups)
+    out[4] = omega_b
+    return out
 
 
-def reduced_jacobian(t: float, y, params: ReducedParams) -> np.ndarray:
-    """Analytic Jacobian d(rhs)/dy of :func:`reduced_rhs`, shape (5, 5).
+@jit
+def jacobian(t, y, args):
+    """Analytic Jacobian d(rhs)/dy of :func:`rhs`, shape (5, 5).
 
     With rho^2 = 1 + xi^2 + eta^2: d rho/d xi = xi/rho, d(1/rho^2)/d xi = -2 xi/rho^4,
     and likewise for eta.
     """
+    ups, mu_ = args[1], args[2]
     xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
     rho2 = 1.0 + xi * xi + eta * eta
     rho = math.sqrt(rho2)
@@ -209,23 +221,36 @@ def reduced_jacobian(t: float, y, params: ReducedParams) -> np.ndarray:
     rho4 = rho2 * rho2
     w = 0.5 * (omega_a + omega_b)
     d = omega_b - omega_a
-    ups = params.upsilon
-    mu_ups = params.mu_ratio * ups
+    mu_ups = mu_ * ups
     jac = np.zeros((5, 5))
-    jac[0] = [0.5 * eta / rho2 - xi * xi * eta / rho4,
-              w + 0.5 * xi / rho2 - xi * eta * eta / rho4,
-              0.5 * eta, 0.5 * eta, 0.0]
-    jac[1] = [-w - xi / rho2 + xi**3 / rho4,
-              xi * xi * eta / rho4,
-              -0.5 * xi, -0.5 * xi, 0.0]
-    jac[2] = [(d * xi / (3.0 * rho) + (1.0 + eta * eta) / rho3) / ups,
-              (d * eta / (3.0 * rho) - xi * eta / rho3) / ups,
-              -rho / (3.0 * ups), rho / (3.0 * ups), 0.0]
-    jac[3] = [(0.5 * (1.0 + eta * eta) / rho3 - d * xi / (6.0 * rho)) / mu_ups,
-              (-0.5 * xi * eta / rho3 - d * eta / (6.0 * rho)) / mu_ups,
-              rho / (6.0 * mu_ups), -rho / (6.0 * mu_ups), 0.0]
+    jac[0, 0] = 0.5 * eta / rho2 - xi * xi * eta / rho4
+    jac[0, 1] = w + 0.5 * xi / rho2 - xi * eta * eta / rho4
+    jac[0, 2] = 0.5 * eta
+    jac[0, 3] = 0.5 * eta
+    jac[1, 0] = -w - xi / rho2 + xi**3 / rho4
+    jac[1, 1] = xi * xi * eta / rho4
+    jac[1, 2] = -0.5 * xi
+    jac[1, 3] = -0.5 * xi
+    jac[2, 0] = (d * xi / (3.0 * rho) + (1.0 + eta * eta) / rho3) / ups
+    jac[2, 1] = (d * eta / (3.0 * rho) - xi * eta / rho3) / ups
+    jac[2, 2] = -rho / (3.0 * ups)
+    jac[2, 3] = rho / (3.0 * ups)
+    jac[3, 0] = (0.5 * (1.0 + eta * eta) / rho3 - d * xi / (6.0 * rho)) / mu_ups
+    jac[3, 1] = (-0.5 * xi * eta / rho3 - d * eta / (6.0 * rho)) / mu_ups
+    jac[3, 2] = rho / (6.0 * mu_ups)
+    jac[3, 3] = -rho / (6.0 * mu_ups)
     jac[4, 3] = 1.0
     return jac
+
+
+def reduced_rhs(t: float, y, params: ReducedParams) -> np.ndarray:
+    """:func:`rhs` from Python, with the groups as a :class:`ReducedParams`."""
+    return rhs(float(t), np.asarray(y, dtype=float), params.args)
+
+
+def reduced_jacobian(t: float, y, params: ReducedParams) -> np.ndarray:
+    """:func:`jacobian` from Python, with the groups as a :class:`ReducedParams`."""
+    return jacobian(float(t), np.asarray(y, dtype=float), params.args)
 
 
 @dataclass(frozen=True)
