@@ -16,6 +16,7 @@ from dynamics.contact.reduced import (
     locked_friction,
     locked_jacobian,
     locked_rhs,
+    phase_args,
     simulate_contact,
     sliding_jacobian,
     sliding_rhs,
@@ -71,7 +72,7 @@ def test_sliding_rhs_satisfies_the_printed_equations(phi, omega_a, omega_b, x_b,
     at kappa* = 0.999999), so rounding is amplified to ~1e-13 there.
     """
     params, contact = ReducedParams(0.4, 0.7, 2.0), ContactParams(kappa_star, 0.3)
-    f = sliding_rhs(0.0, np.array([phi, omega_a, omega_b, x_b]), params, contact, sigma)
+    f = sliding_rhs(0.0, np.array([phi, omega_a, omega_b, x_b]), phase_args(params, contact, sigma))
     c_x = sigma * math.tan(0.3) * math.cos(phi)
     scale = 1.0 + abs(omega_b - omega_a) / contact.zeta_star
     residuals = _polar_residuals(params, contact, phi, omega_a, omega_b, *f[:3], c_x)
@@ -84,7 +85,7 @@ def test_sliding_rhs_satisfies_the_printed_equations(phi, omega_a, omega_b, x_b,
 def test_locked_rhs_and_friction_5_4(phi, omega, x_b, kappa_star):
     """Locked: (2.11b), (2.11d) with Omega_a = Omega_b, and (5.2) closed by the friction (5.4)."""
     params, contact = ReducedParams(0.4, 0.7, 2.0), ContactParams(kappa_star, 0.3)
-    f = locked_rhs(0.0, np.array([phi, omega, x_b]), params, contact)
+    f = locked_rhs(0.0, np.array([phi, omega, x_b]), phase_args(params, contact))
     c_lock = locked_friction(params, kappa_star, phi)
     residuals = _polar_residuals(params, contact, phi, omega, omega, f[0], f[1], f[1], c_lock)
     np.testing.assert_allclose(residuals, 0.0, atol=1e-14)
@@ -96,11 +97,11 @@ def test_locked_rhs_and_friction_5_4(phi, omega, x_b, kappa_star):
 def test_jacobians_against_finite_differences(kappa_star, sigma):
     """Central differences, step 1e-6: truncation ~1e-12 x third derivatives (<= 1/zeta* ~ 1e3)."""
     params, contact = ReducedParams(0.4, 0.7, 2.0), ContactParams(kappa_star, 0.6)
-    for fun, jac, y in ((lambda y: sliding_rhs(0.0, y, params, contact, sigma),
-                         sliding_jacobian(0.0, np.array([2.5, 0.7, -1.2, 3.0]), params, contact, sigma),
+    for fun, jac, y in ((lambda y: sliding_rhs(0.0, y, phase_args(params, contact, sigma)),
+                         sliding_jacobian(0.0, np.array([2.5, 0.7, -1.2, 3.0]), phase_args(params, contact, sigma)),
                          np.array([2.5, 0.7, -1.2, 3.0])),
-                        (lambda y: locked_rhs(0.0, y, params, contact),
-                         locked_jacobian(0.0, np.array([4.0, -2.0, 1.0]), params, contact),
+                        (lambda y: locked_rhs(0.0, y, phase_args(params, contact)),
+                         locked_jacobian(0.0, np.array([4.0, -2.0, 1.0]), phase_args(params, contact)),
                          np.array([4.0, -2.0, 1.0]))):
         h = 1e-6
         numeric = np.column_stack([(fun(y + h * e) - fun(y - h * e)) / (2.0 * h) for e in np.eye(y.size)])
@@ -121,7 +122,7 @@ def test_steady_states_are_fixed_points(s, kappa_star, psi):
     assert locked.c_chi == pytest.approx(locked_friction(params, kappa_star, locked.phi), abs=1e-15)
     # Rates are O(zeta*); 1e-13 relative to their scale 3 zeta* |s| and 1/zeta* amplification.
     tol = 1e-13 * (1.0 + 3.0 * contact.zeta_star * abs(s)) / contact.zeta_star
-    f = locked_rhs(0.0, np.array([locked.phi, locked.omega_a, 0.0]), params, contact)
+    f = locked_rhs(0.0, np.array([locked.phi, locked.omega_a, 0.0]), phase_args(params, contact))
     np.testing.assert_allclose(f[:2], 0.0, atol=tol)
     # The sliding fixed point, of the phase with sigma = sgn(s); it is consistent
     # (sgn(D) = sigma) exactly where (5.5) fails and steady_state picks it.
@@ -131,8 +132,8 @@ def test_steady_states_are_fixed_points(s, kappa_star, psi):
     assert (steady_state(s, kappa_star, psi).phase == SLIDING) == slides
     assert (sigma * (sliding.omega_b - sliding.omega_a) >= 0.0) == slides
     assert sliding.c_chi == pytest.approx(sigma * math.tan(psi) * math.cos(sliding.phi), rel=1e-15)
-    f = sliding_rhs(0.0, np.array([sliding.phi, sliding.omega_a, sliding.omega_b, 0.0]), params, contact,
-                    sigma)
+    f = sliding_rhs(0.0, np.array([sliding.phi, sliding.omega_a, sliding.omega_b, 0.0]),
+                    phase_args(params, contact, sigma))
     np.testing.assert_allclose(f[:3], 0.0, atol=tol)
 
 
@@ -144,7 +145,7 @@ def test_printed_5_11_is_not_a_fixed_point():
     phi = steady_sliding(s, kappa_star, psi).phi
     omega_a = s * z**3 / (2 * kappa_star**2) - 3.0 * z * math.cos(phi) * math.tan(psi)
     omega_b = s * (2.0 + kappa_star**2) * z / (2.0 * kappa_star**2) - omega_a
-    f = sliding_rhs(0.0, np.array([phi, omega_a, omega_b, 0.0]), FIG7, contact, 1.0)
+    f = sliding_rhs(0.0, np.array([phi, omega_a, omega_b, 0.0]), phase_args(FIG7, contact, 1.0))
     assert abs(f[0]) > 0.1 * 3.0 * z * s  # phi' = -(Omega_a + Omega_b)/2 of the printed form
     corrected = steady_sliding(s, kappa_star, psi)
     assert corrected.omega_a + corrected.omega_b == pytest.approx(

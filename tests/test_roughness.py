@@ -13,6 +13,7 @@ from dynamics.contact.reduced import (
     SLIDING,
     ContactParams,
     locked_rhs,
+    phase_args,
     simulate_contact,
     sliding_rhs,
 )
@@ -179,10 +180,10 @@ def test_amplitude_zero_gives_the_uniform_phases_bit_for_bit(y, sigma):
     contact = rough.mean
     y = np.array(y)
     sliding = contact_state(SLIDING, sigma, y, FIG7, rough)
-    assert np.array_equal(sliding.rates[:4], sliding_rhs(0.0, y[:4], FIG7, contact, sigma))
+    assert np.array_equal(sliding.rates[:4], sliding_rhs(0.0, y[:4], phase_args(FIG7, contact, sigma)))
     assert sliding.c_eps == -math.cos(y[0]) and sliding.local.kappa == KAPPA_STAR
     locked = contact_state(LOCKED, 0.0, y[[0, 1, 3, 4]], FIG7, rough)
-    assert np.array_equal(locked.rates[:3], locked_rhs(0.0, y[[0, 1, 3]], FIG7, contact))
+    assert np.array_equal(locked.rates[:3], locked_rhs(0.0, y[[0, 1, 3]], phase_args(FIG7, contact)))
 
 
 @pytest.mark.parametrize("y", SLIDING_STATES)

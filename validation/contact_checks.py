@@ -55,6 +55,7 @@ from dynamics.contact.reduced import (
     SLIDING,
     ContactParams,
     locked_jacobian,
+    phase_args,
     sliding_jacobian,
 )
 from dynamics.contact.steady import (
@@ -113,10 +114,10 @@ def settling_rate(params: ReducedParams, contact: ContactParams) -> float:
     """
     steady = steady_state(params.s, contact.kappa_star, contact.psi)
     if steady.phase == LOCKED:
-        jac = locked_jacobian(0.0, np.array([steady.phi, steady.omega_a, 0.0]), params, contact)[:2, :2]
+        jac = locked_jacobian(0.0, np.array([steady.phi, steady.omega_a, 0.0]), phase_args(params, contact))[:2, :2]
     else:
         state = np.array([steady.phi, steady.omega_a, steady.omega_b, 0.0])
-        jac = sliding_jacobian(0.0, state, params, contact, math.copysign(1.0, params.s))[:3, :3]
+        jac = sliding_jacobian(0.0, state, phase_args(params, contact, math.copysign(1.0, params.s)))[:3, :3]
     return -float(np.max(np.linalg.eigvals(jac).real))
 
 

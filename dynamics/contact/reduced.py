@@ -125,6 +125,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dynamics.equations import reduced
 from dynamics.equations.limits import MAX_TURNS, runaway_event
 from dynamics.equations.reduced import (
     ReducedParams,
@@ -135,6 +136,7 @@ from dynamics.equations.reduced import (
     stretched_to_kappa,
 )
 from dynamics.integrate import Event, integrate
+from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
 
 __all__ = [
@@ -248,89 +250,122 @@ def locked_friction(params: ReducedParams, kappa_star: float, phi):
         2.0 * (1.0 + 2.0 * params.mu_ratio))
 
 
-def _on_circle(phi: float, omega_a: float, omega_b: float, x_b: float, r_star: float) -> np.ndarray:
+@jit(inline="always")
+def _on_circle(phi, omega_a, omega_b, x_b, r_star):
     """The state of :mod:`dynamics.equations.reduced` at kappa = kappa*, for its right-hand side."""
-    return np.array([r_star * math.sin(phi), r_star * math.cos(phi), omega_a, omega_b, x_b])
+    z = np.empty(5)
+    z[0] = r_star * math.sin(phi)
+    z[1] = r_star * math.cos(phi)
+    z[2] = omega_a
+    z[3] = omega_b
+    z[4] = x_b
+    return z
 
 
+@jit(inline="always")
 def _tangential(z, f, r_star):
     """phi' from the stretched rates f = (xi', eta', ...) at z: the (2.11b) part, radial part dropped."""
     return (z[1] * f[0] - z[0] * f[1]) / (r_star * r_star)
 
 
-def _tangential_jacobian(z, f, jac5, dz, r_star):
+@jit(inline="always")
+def _tangential_row(z, f, jac5, dz, r_star):
     """d(phi')/d(state) for phi' = (eta xi' - xi eta')/r*^2, dz = dz/d(state) with phi first."""
     row = (z[1] * (jac5[0] @ dz) - z[0] * (jac5[1] @ dz)) / (r_star * r_star)
     row[0] -= (z[0] * f[0] + z[1] * f[1]) / (r_star * r_star)  # from d(eta, -xi)/d phi
     return row
 
 
-def _circle_tangent(z, n: int, columns) -> np.ndarray:
-    """dz/d(state) (5 x n): phi turns (xi, eta) along (eta, -xi); ``columns`` maps rates to state."""
+@jit(inline="always")
+def _circle_tangent(z, n, rate_columns):
+    """dz/d(state) (5 x n): phi turns (xi, eta) along (eta, -xi); rate_columns[i] is the state column of z[2 + i]."""
     dz = np.zeros((5, n))
-    dz[0, 0], dz[1, 0] = z[1], -z[0]
-    for row, col in columns:
-        dz[row, col] = 1.0
+    dz[0, 0] = z[1]
+    dz[1, 0] = -z[0]
+    for i in range(3):
+        dz[2 + i, rate_columns[i]] = 1.0
     return dz
 
 
-def sliding_rhs(t: float, y, params: ReducedParams, contact: ContactParams, sigma: float) -> np.ndarray:
+# The args of the contact phases: the groups of (2.11), then the contact's numbers.
+#   (s, Upsilon, mu_, r*, tan(psi), sigma, kappa*)
+_R_STAR, _TAN_PSI, _SIGMA, _KAPPA_STAR = 3, 4, 5, 6
+
+
+@jit
+def sliding_rhs(t, y, args):
     """Sliding contact: (2.11b), (5.2) with C_x = sigma tan(psi) cos(phi), (2.11d).
 
-    ``y`` = (phi, Omega_a, Omega_b, X_b); ``sigma`` = sgn(Omega_b - Omega_a)
+    ``y`` = (phi, Omega_a, Omega_b, X_b); ``args[5]`` is sigma = sgn(Omega_b - Omega_a)
     of the phase (0 when psi = 0).
     """
-    r_star = contact.r_star
+    r_star = args[_R_STAR]
     z = _on_circle(y[0], y[1], y[2], y[3], r_star)
-    f = reduced_rhs(t, z, params)
-    c_x = sigma * contact.tan_psi * math.cos(y[0])
-    ups = params.upsilon
-    return np.array([_tangential(z, f, r_star), f[2] - 2.0 * c_x / ups,
-                     f[3] + c_x / (params.mu_ratio * ups), f[4]])
+    f = reduced.rhs(t, z, args)
+    c_x = args[_SIGMA] * args[_TAN_PSI] * math.cos(y[0])
+    ups, mu_ = args[1], args[2]
+    out = np.empty(4)
+    out[0] = _tangential(z, f, r_star)
+    out[1] = f[2] - 2.0 * c_x / ups
+    out[2] = f[3] + c_x / (mu_ * ups)
+    out[3] = f[4]
+    return out
 
 
-def sliding_jacobian(t: float, y, params: ReducedParams, contact: ContactParams, sigma: float) -> np.ndarray:
+@jit
+def sliding_jacobian(t, y, args):
     """Analytic Jacobian of :func:`sliding_rhs` (chain rule through the reduced Jacobian)."""
-    r_star = contact.r_star
+    r_star = args[_R_STAR]
     z = _on_circle(y[0], y[1], y[2], y[3], r_star)
-    f = reduced_rhs(t, z, params)
-    jac5 = reduced_jacobian(t, z, params)
-    dz = _circle_tangent(z, 4, ((2, 1), (3, 2), (4, 3)))
+    f = reduced.rhs(t, z, args)
+    jac5 = reduced.jacobian(t, z, args)
+    dz = _circle_tangent(z, 4, np.array([1, 2, 3]))
     jac = np.empty((4, 4))
-    jac[0] = _tangential_jacobian(z, f, jac5, dz, r_star)
+    jac[0] = _tangential_row(z, f, jac5, dz, r_star)
     jac[1:] = jac5[2:] @ dz
-    dc_x = -sigma * contact.tan_psi * math.sin(y[0])
-    jac[1, 0] -= 2.0 * dc_x / params.upsilon
-    jac[2, 0] += dc_x / (params.mu_ratio * params.upsilon)
+    dc_x = -args[_SIGMA] * args[_TAN_PSI] * math.sin(y[0])
+    jac[1, 0] -= 2.0 * dc_x / args[1]
+    jac[2, 0] += dc_x / (args[2] * args[1])
     return jac
 
 
-def locked_rhs(t: float, y, params: ReducedParams, contact: ContactParams) -> np.ndarray:
+@jit
+def locked_rhs(t, y, args):
     """Locked contact: (2.11b) and (2.11d) with Omega_a = Omega_b; ``y`` = (phi, Omega, X_b).
 
     (mu_ + 1/2) Upsilon Omega' = mu_ Upsilon Omega_b' + (1/2) Upsilon Omega_a'
     of the reduced right-hand side, which no contact force enters.
     """
-    r_star = contact.r_star
+    r_star = args[_R_STAR]
     z = _on_circle(y[0], y[1], y[1], y[2], r_star)
-    f = reduced_rhs(t, z, params)
-    mu_ = params.mu_ratio
-    return np.array([_tangential(z, f, r_star), (mu_ * f[3] + 0.5 * f[2]) / (mu_ + 0.5), f[4]])
+    f = reduced.rhs(t, z, args)
+    mu_ = args[2]
+    out = np.empty(3)
+    out[0] = _tangential(z, f, r_star)
+    out[1] = (mu_ * f[3] + 0.5 * f[2]) / (mu_ + 0.5)
+    out[2] = f[4]
+    return out
 
 
-def locked_jacobian(t: float, y, params: ReducedParams, contact: ContactParams) -> np.ndarray:
+@jit
+def locked_jacobian(t, y, args):
     """Analytic Jacobian of :func:`locked_rhs`."""
-    r_star = contact.r_star
+    r_star = args[_R_STAR]
     z = _on_circle(y[0], y[1], y[1], y[2], r_star)
-    f = reduced_rhs(t, z, params)
-    jac5 = reduced_jacobian(t, z, params)
-    dz = _circle_tangent(z, 3, ((2, 1), (3, 1), (4, 2)))
-    mu_ = params.mu_ratio
+    f = reduced.rhs(t, z, args)
+    jac5 = reduced.jacobian(t, z, args)
+    dz = _circle_tangent(z, 3, np.array([1, 1, 2]))
+    mu_ = args[2]
     jac = np.empty((3, 3))
-    jac[0] = _tangential_jacobian(z, f, jac5, dz, r_star)
+    jac[0] = _tangential_row(z, f, jac5, dz, r_star)
     jac[1] = (mu_ * jac5[3] + 0.5 * jac5[2]) @ dz / (mu_ + 0.5)
     jac[2] = jac5[4] @ dz
     return jac
+
+
+def phase_args(params: ReducedParams, contact: ContactParams, sigma: float = 0.0) -> tuple:
+    """The compiled phases' args: (s, Upsilon, mu_, r*, tan(psi), sigma, kappa*)."""
+    return (*params.args, contact.r_star, contact.tan_psi, float(sigma), contact.kappa_star)
 
 
 # -- the hybrid driver --------------------------------------------------------------
@@ -496,16 +531,17 @@ def _phase_setup(phase, sigma, params, contact, x_b0, max_turns):
         if tan_psi > 0.0:
             events += (Event("stick", lambda t, y: sigma * (y[2] - y[1]), -1.0,
                              lambda t: f"Omega_a = Omega_b at t = {t:.6g}"),)
-        return (lambda t, y: sliding_rhs(t, y, params, contact, sigma),
-                lambda t, y: sliding_jacobian(t, y, params, contact, sigma), events)
+        args = phase_args(params, contact, sigma)
+        return (lambda t, y: sliding_rhs(t, y, args), lambda t, y: sliding_jacobian(t, y, args), events)
 
     def slip(side):
         return Event("slip", lambda t, y: -math.cos(y[0]) * tan_psi
                      - side * locked_friction(params, contact.kappa_star, y[0]), -1.0,
                      lambda t: f"friction bound (5.5) reached at t = {t:.6g}")
 
-    return (lambda t, y: locked_rhs(t, y, params, contact),
-            lambda t, y: locked_jacobian(t, y, params, contact), (lift, runaway, slip(1.0), slip(-1.0)))
+    args = phase_args(params, contact)
+    return (lambda t, y: locked_rhs(t, y, args), lambda t, y: locked_jacobian(t, y, args),
+            (lift, runaway, slip(1.0), slip(-1.0)))
 
 
 def free_columns(y, t, phi_start: float) -> dict:

@@ -151,6 +151,7 @@ from dynamics.contact.reduced import (
     free_columns,
     locked_friction,
     locked_rhs,
+    phase_args,
     run_phases,
     sliding_rhs,
 )
@@ -236,14 +237,14 @@ def contact_state(phase: str, sigma: float, y, params: ReducedParams, rough: Rou
     here = ContactParams(local.kappa, rough.mean.psi)
     ups, mu_ = params.upsilon, params.mu_ratio
     if phase == SLIDING:
-        base = sliding_rhs(0.0, y[:4], params, here, 0.0)  # the uniform phase without friction
+        base = sliding_rhs(0.0, y[:4], phase_args(params, here, 0.0))  # the uniform phase without friction
         c_e, turn, tilt = normal_reaction(local, phi, base[0], y[1], y[2])
         c_x = -sigma * here.tan_psi * c_e
         torque = c_x - tilt
         rates = np.array([base[0] + turn, base[1] - 2.0 * torque / ups, base[2] + torque / (mu_ * ups),
                           base[3], y[1]])
         return ContactState(rates, c_e, c_x, local)
-    base = locked_rhs(0.0, y[:3], params, here)
+    base = locked_rhs(0.0, y[:3], phase_args(params, here))
     c_e, turn, tilt = normal_reaction(local, phi, base[0], y[1], y[1])
     rates = np.array([base[0] + turn, base[1], base[2], y[1]])
     return ContactState(rates, c_e, locked_friction(params, local.kappa, phi) + tilt, local)
