@@ -1,0 +1,327 @@
+"""The integration loop: output rows, events, stop reasons, counts, pausing and resuming.
+
+:func:`init` sets up a :class:`~dynamics.engine.state.State` at (t0, y0);
+:func:`advance` takes Radau steps (:func:`dynamics.engine.radau.step`) from it
+until the run ends or ``chunk_steps`` steps are taken, and returns the output
+rows of those steps; :func:`solve` does both in one call. They take the model's
+``fun``, ``jac`` and ``events`` as arguments. From Python, call them through
+:func:`dynamics.engine.compiled.engine_for`, compiled once for all models; compiled
+code may call them directly, which compiles the loop for that model inside the
+caller (and into its disk cache, if it names the model's functions as globals):
+
+    @jit
+    def run_model(y0, t_end, args):
+        return solve(rhs, rhs_jacobian, contact_events, args, 0.0, y0, t_end, ...)
+
+Output rows. Each row is (t, y, kind, event); ``kind`` is a sum of flags: START
+(the initial state), STEP (an accepted step, when every step is output), SAMPLE
+(a requested time, from the dense output), EVENT (``event`` is its index; -1 on
+other rows) and END (where the run stopped). Rows come in time order; at a common
+time a sample precedes an event, and an event precedes the step it falls in. The
+end flag is set on the last row when the run reached ``t_end`` or a terminal event
+there; a run that fails (or reaches ``max_steps``) gets an extra END row at its
+last accepted point, so in every-step output that state appears twice.
+
+Events. Event i fires in a step (t_old, t_new] when g_i goes from negative to
+zero or positive (``direction`` >= 0) or from positive to zero or negative
+(``direction`` <= 0); so a g_i that is exactly zero at the start of a step cannot
+fire in it: not at t0, and not twice for a root that fell on a step's end. The
+root is found on the step's dense output (:mod:`dynamics.engine.roots`); events
+of one step are handled earliest first. Event i is terminal when ``terminal[i]``
+> 0: its ``terminal[i]``-th occurrence ends the run there, with the state at the
+event. (scipy's ``solve_ivp`` instead lets an event that starts at zero fire at
+t0.)
+"""
+
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from lubrication._jit import jit
+
+from .radau import copy_into, dense_eval, evaluate, initial_step, new_work, newton_tolerance, step
+from .roots import event_root
+from .state import (
+    CURRENT_JAC, EVERY_STEP, H_ABS, MAX_STEP, MAX_STEPS, MAX_STEPS_REACHED, NEWTON_TOL, NFEV,
+    NJEV, NON_FINITE, PAUSED, REACHED_END, RTOL, RUNNING, STARTED, STATUS, STEPS, STOP_EVENT,
+    T, T_END, T_EVAL_POS, T_OLD, TERMINAL_EVENT, new_state,
+)
+
+__all__ = ["START", "STEP", "SAMPLE", "EVENT", "END", "init", "advance", "solve", "no_events"]
+
+# Row kinds (flags, a row may carry several). Numpy integers, so that numba does not
+# compile a separate version of every function they are passed to for each value.
+START = np.int64(1)
+STEP = np.int64(2)
+SAMPLE = np.int64(4)
+EVENT = np.int64(8)
+END = np.int64(16)
+NO_EVENT = np.int64(-1)
+FIRST_CAPACITY = np.int64(64)
+
+#: Output rows being collected; ``count[0]`` rows are filled; arrays grow by doubling.
+Rows = namedtuple("Rows", ["t", "y", "kind", "event", "count"])
+
+
+@jit
+def no_events(t, y, args):
+    """The event function of a run without events: m = 0."""
+    return np.empty(0)
+
+
+@jit
+def _new_rows(n, capacity):
+    return Rows(np.empty(capacity), np.empty((capacity, n)), np.zeros(capacity, dtype=np.int64),
+                np.full(capacity, -1, dtype=np.int64), np.zeros(1, dtype=np.int64))
+
+
+@jit
+def _push(rows, t, y, kind, event):
+    """Append a row, doubling the arrays when full; returns the (possibly new) rows."""
+    k = rows.count[0]
+    n = rows.y.shape[1]
+    if k == rows.t.shape[0]:
+        bigger = _new_rows(n, 2 * k)
+        for r in range(k):
+            bigger.t[r] = rows.t[r]
+            bigger.kind[r] = rows.kind[r]
+            bigger.event[r] = rows.event[r]
+            for j in range(n):
+                bigger.y[r, j] = rows.y[r, j]
+        rows = Rows(bigger.t, bigger.y, bigger.kind, bigger.event, rows.count)
+    rows.t[k] = t
+    for j in range(n):
+        rows.y[k, j] = y[j]
+    rows.kind[k] = kind
+    rows.event[k] = event
+    rows.count[0] = k + 1
+    return rows
+
+
+@jit
+def _emit_samples(s, rows, t_upto, y):
+    """Rows at the requested times up to ``t_upto`` inside the last step (y (n,) is scratch)."""
+    t_eval = s.t_eval
+    pos = s.counters[T_EVAL_POS]
+    while pos < t_eval.shape[0] and t_eval[pos] <= t_upto:
+        if t_eval[pos] == s.scalars[T]:
+            rows = _push(rows, t_eval[pos], s.y, SAMPLE, NO_EVENT)
+        else:
+            dense_eval(s, t_eval[pos], y)
+            rows = _push(rows, t_eval[pos], y, SAMPLE, NO_EVENT)
+        pos += 1
+    s.counters[T_EVAL_POS] = pos
+    return rows
+
+
+@jit
+def _crosses(g_old, g_new, direction):
+    """Whether an event with values g_old, g_new at a step's ends fires in it."""
+    up = g_old < 0.0 and g_new >= 0.0
+    down = g_old > 0.0 and g_new <= 0.0
+    return (up and direction >= 0) or (down and direction <= 0)
+
+
+@jit
+def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratch):
+    """Events and output rows of the step just accepted; sets the status when the run ends."""
+    t_new = s.scalars[T]
+    every_step = s.counters[EVERY_STEP] != 0
+    m = s.g.shape[0]
+    if m > 0:
+        evaluate(events, t_new, s.y, args, g_new)
+        found = 0
+        for i in range(m):
+            if _crosses(s.g[i], g_new[i], s.direction[i]):
+                root = event_root(events, args, s, i, s.scalars[T_OLD], t_new, s.g[i], g_new[i], y, g_scratch)
+                # insertion in time order (ties keep the event order)
+                k = found
+                while k > 0 and roots[k - 1] > root:
+                    roots[k] = roots[k - 1]
+                    which[k] = which[k - 1]
+                    k -= 1
+                roots[k] = root
+                which[k] = i
+                found += 1
+        copy_into(s.g, g_new)
+        for r in range(found):
+            t_event, i = roots[r], which[r]
+            if not every_step:
+                rows = _emit_samples(s, rows, t_event, y)
+            if t_event == t_new:
+                copy_into(y_event, s.y)
+            else:
+                dense_eval(s, t_event, y_event)
+            rows = _push(rows, t_event, y_event, EVENT, i)
+            s.event_count[i] += 1
+            if s.terminal[i] > 0 and s.event_count[i] >= s.terminal[i]:
+                s.counters[STATUS] = TERMINAL_EVENT
+                s.counters[STOP_EVENT] = i
+                s.scalars[T] = t_event  # the run ends at the event, with the state there
+                copy_into(s.y, y_event)
+                return rows
+    if every_step:
+        rows = _push(rows, t_new, s.y, STEP, NO_EVENT)
+    else:
+        rows = _emit_samples(s, rows, t_new, y)
+    if t_new >= s.scalars[T_END]:
+        s.counters[STATUS] = REACHED_END
+    return rows
+
+
+@jit
+def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
+         t_eval, every_step, terminal, direction):
+    """A new run at (t0, y0), ready for :func:`advance`.
+
+    Parameters
+    ----------
+    fun, jac, events : compiled functions
+        ``fun(t, y, args)`` -> dy/dt, shape (n,); ``jac(t, y, args)`` -> d fun / d y,
+        shape (n, n); ``events(t, y, args)`` -> event values, shape (m,), m >= 0
+        (:func:`no_events` for none).
+    args : any numba-typable value
+        Passed through to the three functions.
+    t0, t_end : float
+        Start and end, t_end > t0.
+    y0 : ndarray, shape (n,)
+    rtol : float
+        Relative tolerance, in [100 eps, 1).
+    atol : ndarray, shape (n,)
+        Absolute tolerances, positive.
+    first_step : float
+        Size of the first step; 0 chooses it (HW I, section II.4, as scipy).
+    max_step : float
+        Largest step size (inf for none).
+    max_steps : int
+        The run stops (MAX_STEPS_REACHED) after this many accepted steps.
+    t_eval : ndarray, shape (k,)
+        Increasing output times in [t0, t_end], used when ``every_step`` is False.
+    every_step : bool
+        Output every accepted step (True) or the times ``t_eval`` (False).
+    terminal : ndarray of int, shape (m,)
+        0: event i is recorded and the run goes on; k > 0: its k-th occurrence
+        ends the run. Its length is the number of events m that ``events`` returns.
+    direction : ndarray of int, shape (m,)
+        +1: only rising crossings count, -1: only falling ones, 0: both.
+
+    Returns
+    -------
+    State
+        Status RUNNING, or NON_FINITE if f or J is not finite at (t0, y0).
+        The inputs are not checked here: :func:`dynamics.engine.check_inputs` does that.
+    """
+    n = y0.shape[0]
+    s = new_state(n, terminal.shape[0], t_eval)
+    sc, counters = s.scalars, s.counters
+    sc[T] = t0
+    sc[T_OLD] = t0
+    sc[RTOL] = rtol
+    sc[T_END] = t_end
+    sc[MAX_STEP] = max_step
+    sc[NEWTON_TOL] = newton_tolerance(rtol)
+    copy_into(s.y, y0)
+    copy_into(s.atol, atol)
+    copy_into(s.terminal, terminal)
+    copy_into(s.direction, direction)
+    counters[EVERY_STEP] = 1 if every_step else 0
+    counters[MAX_STEPS] = max_steps
+    evaluate(events, t0, s.y, args, s.g)
+    counters[NFEV] += 1
+    if not evaluate(fun, t0, s.y, args, s.f):
+        counters[STATUS] = NON_FINITE
+        return s
+    if first_step > 0.0:
+        sc[H_ABS] = first_step
+    else:
+        sc[H_ABS] = initial_step(fun, args, t0, s.y, s.f, t_end, max_step, rtol, s.atol, counters)
+    counters[NJEV] += 1
+    if not evaluate(jac, t0, s.y, args, s.jac):
+        counters[STATUS] = NON_FINITE
+        return s
+    counters[CURRENT_JAC] = 1
+    return s
+
+
+@jit
+def advance(fun, jac, events, args, s, chunk_steps):
+    """Step the run ``s`` until it ends, or for ``chunk_steps`` accepted steps (> 0) and pause.
+
+    ``s`` is updated in place; a paused run (status PAUSED) continues with
+    another call, exactly as if it had not paused.
+
+    Returns
+    -------
+    t : ndarray, shape (k,)
+    y : ndarray, shape (n, k)
+    kind : ndarray of int64, shape (k,)
+        Sum of the flags START, STEP, SAMPLE, EVENT, END.
+    event : ndarray of int64, shape (k,)
+        Event index of EVENT rows, -1 elsewhere.
+        The rows written in this call only.
+    """
+    n = s.y.shape[0]
+    m = s.g.shape[0]
+    counters = s.counters
+    rows = _new_rows(n, FIRST_CAPACITY)
+    status = counters[STATUS]
+    if counters[STARTED] and status != RUNNING and status != PAUSED:
+        return _trimmed(rows)  # nothing left to do
+    if status == PAUSED:
+        counters[STATUS] = RUNNING
+    if not counters[STARTED]:
+        counters[STARTED] = 1
+        if counters[EVERY_STEP]:
+            rows = _push(rows, s.scalars[T], s.y, START, NO_EVENT)
+        else:
+            while counters[T_EVAL_POS] < s.t_eval.shape[0] and s.t_eval[counters[T_EVAL_POS]] <= s.scalars[T]:
+                rows = _push(rows, s.scalars[T], s.y, START | SAMPLE, NO_EVENT)
+                counters[T_EVAL_POS] += 1
+    w = new_work(n)
+    roots = np.empty(m)
+    which = np.empty(m, dtype=np.int64)
+    y = np.empty(n)
+    y_event = np.empty(n)
+    g_new = np.empty(m)
+    g_scratch = np.empty(m)
+    taken = 0
+    while counters[STATUS] == RUNNING:
+        if counters[STEPS] >= counters[MAX_STEPS]:
+            counters[STATUS] = MAX_STEPS_REACHED
+            break
+        if chunk_steps > 0 and taken >= chunk_steps:
+            counters[STATUS] = PAUSED
+            break
+        code = step(fun, jac, args, s, w)
+        if code != RUNNING:
+            counters[STATUS] = code
+            break
+        taken += 1
+        rows = _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratch)
+    status = counters[STATUS]
+    if status != PAUSED:
+        k = rows.count[0]
+        if (status == REACHED_END or status == TERMINAL_EVENT) and k > 0 and rows.t[k - 1] == s.scalars[T]:
+            rows.kind[k - 1] |= END
+        else:
+            rows = _push(rows, s.scalars[T], s.y, END, NO_EVENT)
+    return _trimmed(rows)
+
+
+@jit
+def _trimmed(rows):
+    k = rows.count[0]
+    return (rows.t[:k].copy(), np.ascontiguousarray(rows.y[:k].T), rows.kind[:k].copy(),
+            rows.event[:k].copy())
+
+
+@jit
+def solve(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
+          t_eval, every_step, terminal, direction):
+    """:func:`init` and :func:`advance` to the end in one call; returns (t, y, kind, event, state)."""
+    s = init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
+             t_eval, every_step, terminal, direction)
+    t, y, kind, event = advance(fun, jac, events, args, s, 0)
+    return t, y, kind, event, s
