@@ -21,7 +21,24 @@ import math
 from ._jit import jit
 from .geometry import Annulus, Fluid, FluidForces, Motion
 
-__all__ = ["closed_form_forces", "lubrication_forces"]
+__all__ = ["closed_form_forces", "lubrication_forces", "lubrication_resistance"]
+
+
+@jit
+def lubrication_resistance(a, delta, mu, kappa, omk):
+    """The five coefficients of (2.5)-(2.7) per unit length, in RESISTANCE_NAMES order.
+
+    R_eps (N s/m^2), R_chi_a, R_t_a, R_chi_b, R_t_b (N s/m, N s, N s/m, N s): f_eps = R_eps eps',
+    f_chi = R_chi_a W_a + R_chi_b W_b, T_a = R_t_a W_a + R_t_b W_b. ``omk`` is 1 - kappa, kept
+    for precision near contact.
+    """
+    zeta = math.sqrt(omk * (1.0 + kappa))
+    c = 4.0 * math.pi * mu * a**3
+    k2 = kappa * kappa
+    r_chi = 3.0 * c * kappa / (delta**2 * (2.0 + k2) * zeta)
+    torque = c / (delta * (2.0 + k2) * zeta)
+    return (-3.0 * c / (delta**3 * zeta**3), r_chi, -(1.0 + 2.0 * k2) * torque, r_chi,
+            omk * (1.0 + kappa) * torque)
 
 
 @jit
@@ -33,13 +50,8 @@ def lubrication_forces(a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
     f_eps, f_chi, T_a : float
         N, N, N m.
     """
-    zeta = math.sqrt(omk * (1.0 + kappa))
-    c = 4.0 * math.pi * mu * a**3 * length
-    f_eps = -3.0 * c * eps_dot / (delta**3 * zeta**3)
-    f_chi = 3.0 * c * kappa * (w_a + w_b) / (delta**2 * (2.0 + kappa * kappa) * zeta)
-    t_a = c * (omk * (1.0 + kappa) * w_b - (1.0 + 2.0 * kappa * kappa) * w_a) / (
-        delta * (2.0 + kappa * kappa) * zeta)
-    return f_eps, f_chi, t_a
+    r = lubrication_resistance(a, delta, mu, kappa, omk)
+    return (length * r[0] * eps_dot, length * (r[1] * w_a + r[3] * w_b), length * (r[2] * w_a + r[4] * w_b))
 
 
 def closed_form_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:

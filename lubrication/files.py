@@ -1,4 +1,4 @@
-"""Output files written whole or not at all: write to a temporary name, then rename."""
+"""Files written whole or not at all (write to a temporary name, then rename), and where tables are kept."""
 
 from __future__ import annotations
 
@@ -7,7 +7,13 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["write_bytes", "write_json", "write_text", "save_figure"]
+__all__ = ["cache_folder", "write_bytes", "write_json", "write_text", "save_figure"]
+
+
+def cache_folder() -> Path:
+    """Folder of stored tables: ``$SNAIL_CACHE`` if set, else ``~/.cache/snail-cylinder``."""
+    env = os.environ.get("SNAIL_CACHE")
+    return Path(env) if env else Path.home() / ".cache" / "snail-cylinder"
 
 
 def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
