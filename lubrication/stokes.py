@@ -385,7 +385,14 @@ class _Discretisation:
         the wall. Its contraction with a unit rigid motion of the wall is minus
         the force (translation) or torque (rotation) of the fluid on the wall.
         """
-        r = self.matrix @ x
+        return self.residual_loads(self.matrix @ x)
+
+    def residual_loads(self, r: np.ndarray) -> dict[str, float]:
+        """Force and torque on both walls from a residual vector ``r`` (see :meth:`loads`).
+
+        Any discretisation that shares these unknowns (the Navier-Stokes
+        residual, with its convective rows) gets its wall loads the same way.
+        """
         r_in, r_out = r[self.inner_dofs], r[self.outer_dofs]
 
         def contract(res, motion):
