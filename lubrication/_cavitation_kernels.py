@@ -474,3 +474,23 @@ def cavitating_film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b
     f_x = scale * i_sin
     f_y = scale * i_chi
     return (cos_c * f_x - sin_c * f_y, sin_c * f_x + cos_c * f_y, mu * a * a * length * i_torque, passes)
+
+
+@jit
+def half_sommerfeld_weights(y, y_cav, weight):
+    """The half-Sommerfeld truncation's share of each cell above the cavitation level.
+
+    ``weight[j]`` receives 1 where both nodes of cell j are at or above ``y_cav``, 0
+    where both are below, and otherwise the part of the cell above ``y_cav`` by linear
+    interpolation between the nodes, so that the kept pressure rises end at p_cav exactly.
+    """
+    n = y.size
+    for j in range(n):
+        jp = j + 1 if j < n - 1 else 0
+        lo, hi = y[j] - y_cav, y[jp] - y_cav
+        if lo < 0.0 and hi < 0.0:
+            weight[j] = 0.0
+        elif lo < 0.0 or hi < 0.0:
+            weight[j] = max(lo, hi) / abs(hi - lo)
+        else:
+            weight[j] = 1.0
