@@ -1,44 +1,51 @@
-"""The snail cylinder's equations of motion, scenes, trajectories and the ``snail`` command.
+"""The snail cylinder's equations of motion, contact, scenes, trajectories and the ``snail`` command.
 
-Load a scene and simulate it::
+Simulate a device, or load a scene and run it::
+
+    from dynamics import Initial, preset, simulate
+    trajectory = simulate(preset("steel"), Initial(kappa=0.5, phi=0.5), t_end=10.0, forces="stokes-exact")
 
     from dynamics import load_scene, run_scene
     trajectory = run_scene(load_scene())          # the embedded default scene
-    trajectory.columns["kappa"], trajectory.status
+
+The package, from the bottom up::
+
+    engine/      the compiled Radau IIA integrator (dense output, events)
+    equations/   the full (2.1)-(2.4) and reduced (2.11) equations, their force models, special
+                 solutions and validity limits
+    contact/     rough contact (section 5): the phases, the hybrid driver, steady states
+    simulation.py one simulation API and one result type for every model
+    scenes/      scene files: schema, units, reading
+    app/         a scene in, files out; the automatic model choice; sweeps; the command line
+
+Names below are imported on first use, so that ``import dynamics`` is cheap.
 """
 
-from dynamics.app.run import run_scene
-from dynamics.apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
-from dynamics.equations.forces import FORCE_MODELS, ForceModel, force_model
-from dynamics.equations.reduced import ReducedParams
-from dynamics.scenes import Initial, Scene, SceneError, load_scene, parse_scene
-from dynamics.simulate import (
-    Trajectory,
-    simulate_contact,
-    simulate_full,
-    simulate_full_contact,
-    simulate_reduced,
-)
+from importlib import import_module
 
-__all__ = [
-    "ALUMINIUM",
-    "FORCE_MODELS",
-    "PRESETS",
-    "STEEL",
-    "Apparatus",
-    "ForceModel",
-    "Initial",
-    "ReducedParams",
-    "Scene",
-    "SceneError",
-    "Trajectory",
-    "force_model",
-    "load_scene",
-    "parse_scene",
-    "preset",
-    "run_scene",
-    "simulate_contact",
-    "simulate_full",
-    "simulate_full_contact",
-    "simulate_reduced",
-]
+_WHERE = {
+    "ALUMINIUM": "apparatus", "PRESETS": "apparatus", "STEEL": "apparatus", "Apparatus": "apparatus",
+    "preset": "apparatus",
+    "ContactParams": "contact.reduced", "RoughContact": "contact.roughness",
+    "FORCE_MODELS": "equations.forces", "ForceModel": "equations.forces", "force_model": "equations.forces",
+    "Limits": "equations.limits", "ReducedParams": "equations.reduced",
+    "Initial": "initial",
+    "Trajectory": "simulation", "simulate": "simulation",
+    "Scene": "scenes", "SceneError": "scenes", "load_scene": "scenes", "parse_scene": "scenes",
+    "run_scene": "app.run",
+}
+
+__all__ = sorted(_WHERE)
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        value = getattr(import_module(f"dynamics.{_WHERE[name]}"), name)
+        globals()[name] = value
+        return value
+    msg = f"module {__name__!r} has no attribute {name!r}"
+    raise AttributeError(msg)
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -27,6 +27,16 @@ class Initial:
     phi_dot: float = key(0.0, help="d phi/dt", **_RATE)
     omega_a: float = key(0.0, help="spin Omega_a of the inner cylinder", **_RATE)
     omega_b: float = key(0.0, help="spin Omega_b of the outer cylinder, X_b' = b Omega_b", **_RATE)
+    one_minus_kappa: float | None = key(None, help="1 - kappa given directly, for starts so close to contact "
+                                        "that kappa cannot carry the gap (then kappa is ignored)", low=0.0,
+                                        high=1.0, bounds="(]", none="none")
 
     def __post_init__(self):
         check_fields(self)
+        if self.one_minus_kappa is not None:
+            object.__setattr__(self, "kappa", 1.0 - self.one_minus_kappa)
+
+    @property
+    def gap(self) -> float:
+        """1 - kappa, exact when given as ``one_minus_kappa``."""
+        return 1.0 - self.kappa if self.one_minus_kappa is None else self.one_minus_kappa

@@ -1,182 +1,148 @@
-"""Step a scipy ODE solver, locate terminal events, and keep what was computed when a run stops early.
+"""One call for every integrator: the compiled Radau IIA engine, or one of scipy's solvers as a cross-check.
 
-:func:`scipy.integrate.solve_ivp` returns nothing when it is interrupted; this
-driver steps the same scipy solvers (Radau, BDF, LSODA, ...) itself so that an
-interrupted or failed run still hands back every step it took, with the reason.
-Events are located on the solver's dense output with ``brentq``, as
-``solve_ivp`` does, never by stepping past them.
+:func:`integrate` takes a model's compiled ``fun``, ``jac`` and ``events``
+(``f(t, y, args)``) and returns a :class:`dynamics.engine.Result` whichever
+method runs it:
+
+``"radau"`` (the default)
+    the compiled engine, :func:`dynamics.engine.integrate`: no Python per step;
+``"Radau"``, ``"BDF"``, ``"LSODA"``
+    scipy's solvers stepped from Python, for cross-checks: events are located on
+    their dense output with ``brentq`` (to 4 eps), output rows carry the same
+    kinds, and a run stopped by Ctrl-C or SIGTERM keeps what it computed.
 """
 
 from __future__ import annotations
 
-import sys
-import time
-from dataclasses import dataclass
-from typing import Callable
-
 import numpy as np
-from scipy.integrate import BDF, DOP853, LSODA, RK23, RK45, Radau
-from scipy.optimize import brentq
 
-__all__ = ["METHODS", "Event", "Integration", "integrate"]
+from dynamics import engine
+from dynamics.engine import END, EVENT, SAMPLE, START, STEP, Interrupts, Result, check_inputs, no_events
 
-METHODS = {"Radau": Radau, "BDF": BDF, "LSODA": LSODA, "RK45": RK45, "RK23": RK23, "DOP853": DOP853}
-_IMPLICIT = ("Radau", "BDF", "LSODA")
+__all__ = ["METHODS", "integrate"]
 
-
-@dataclass(frozen=True)
-class Event:
-    """A terminal event: the run stops where ``g(t, y)`` crosses zero in ``direction``.
-
-    ``describe(t)`` returns the stop reason written into the result.
-    """
-
-    name: str
-    g: Callable[[float, np.ndarray], float]
-    direction: float
-    describe: Callable[[float], str]
+METHODS = ("radau", "Radau", "BDF", "LSODA")
 
 
-@dataclass
-class Integration:
-    """Every accepted step of a run, and how it ended.
-
-    ``status`` is "completed" (reached ``t_end``), "stopped" (an event; ``event``
-    names it), "failed" (the solver or the model failed) or "interrupted".
-    """
-
-    t: np.ndarray
-    y: np.ndarray
-    status: str
-    reason: str
-    event: str = ""
-    steps: int = 0
-    nfev: int = 0
-    njev: int = 0
-    wall_time_s: float = 0.0
-
-
-def _progress_bar(t_end: float, label: str):
-    """A tqdm bar on a terminal, refreshed at most once a second; None when piped."""
-    if not sys.stderr.isatty():
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=t_end, desc=label, unit="t", mininterval=1.0, leave=False,
-                bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} [{elapsed}<{remaining}]")
-
-
-def integrate(fun, y0, t_end: float, *, jac=None, rtol: float = 1e-8, atol=1e-10,
-              method: str = "LSODA", events: tuple[Event, ...] = (), t_eval=None,
-              max_steps: int = 2_000_000, progress: str | None = None) -> Integration:
-    """Integrate ``y' = fun(t, y)`` from 0 to ``t_end``.
-
-    Parameters
-    ----------
-    fun, jac : callable
-        Right-hand side and (for implicit methods) its Jacobian.
-    y0 : array_like, shape (n,)
-    t_end : float
-    rtol, atol : float or array_like
-        Tolerances of the scipy solver.
-    method : str
-        One of :data:`METHODS`.
-    events : tuple of Event
-        Terminal events.
-    t_eval : array_like, optional
-        Increasing output times in [0, t_end], sampled from the dense output; by
-        default every accepted step is kept. The state where an event stops the
-        run is appended either way.
-    max_steps : int
-        A run that needs more steps than this is stopped with that reason, so
-        that no run hangs.
-    progress : str, optional
-        Label of a progress bar shown on a terminal.
-    """
+def integrate(fun, jac, t_span, y0, *, args=(), method: str = "radau", rtol=1e-8, atol=1e-10, events=None,
+              terminal=0, direction=0, t_eval=None, max_steps: int = 2_000_000, chunk_steps: int = 20_000,
+              progress=None) -> Result:
+    """Integrate y' = fun(t, y, args) with ``method`` (:data:`METHODS`); see :func:`dynamics.engine.integrate`."""
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
-    options = {"rtol": rtol, "atol": atol}
-    if method in _IMPLICIT and jac is not None:
-        options["jac"] = jac
-    start = time.perf_counter()
-    y0 = np.asarray(y0, dtype=float)
-    samples = None if t_eval is None else np.asarray(t_eval, dtype=float)
-    ts, ys = ([0.0], [y0.copy()]) if samples is None else ([], [])
-    next_sample = 0
-    status, reason, event_name = "completed", f"reached t_end = {t_end:.6g}", ""
-    bar = _progress_bar(t_end, progress) if progress else None
-    solver = None
-    steps = 0
+    if method == "radau":
+        return engine.integrate(fun, jac, t_span, y0, args=args, rtol=rtol, atol=atol, events=events,
+                                terminal=terminal, direction=direction, t_eval=t_eval, max_steps=max_steps,
+                                chunk_steps=chunk_steps, progress=progress)
+    return _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events or no_events, terminal, direction,
+                  t_eval, max_steps, progress)
+
+
+def _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events, terminal, direction, t_eval, max_steps,
+           progress) -> Result:
+    from scipy import integrate as si
+    from scipy.optimize import brentq
+
+    inputs = check_inputs(fun, jac, events, t_span, y0, args=args, rtol=rtol, atol=atol, t_eval=t_eval,
+                          terminal=terminal, direction=direction, max_steps=max_steps)
+    t0, t_end, y0 = inputs["t0"], inputs["t_end"], inputs["y0"]
+    terminal, direction = inputs["terminal"], inputs["direction"]
+    samples = inputs["t_eval"] if not inputs["every_step"] else None
+    solver = getattr(si, method)(lambda t, y: fun(t, y, args), t0, y0, t_end, rtol=inputs["rtol"],
+                                 atol=inputs["atol"], jac=lambda t, y: jac(t, y, args))
+    rows_t, rows_y, rows_kind, rows_event = [], [], [], []
+
+    def row(t, y, kind, event=-1):
+        rows_t.append(t)
+        rows_y.append(np.array(y, dtype=float))
+        rows_kind.append(kind)
+        rows_event.append(event)
+
+    g_old = np.asarray(events(t0, y0, args), dtype=float)
+    counts = np.zeros(g_old.size, dtype=np.int64)
+    sampled_at_start = samples is not None and samples.size and samples[0] == t0
+    if samples is None or sampled_at_start:  # as the engine: a start row only where rows are asked for
+        row(t0, y0, START | (SAMPLE if sampled_at_start else 0))
+    next_sample = int(bool(sampled_at_start))
+    code, stop_event, steps = engine.REACHED_END, -1, 0
+    last_t, last_y = t0, y0.copy()
+    interrupts = Interrupts()
+    interrupts.__enter__()
     try:
-        solver = METHODS[method](fun, 0.0, y0, t_end, **options)
-        g_old = [ev.g(0.0, y0) for ev in events]
         while solver.status == "running":
-            if steps >= max_steps:
-                status, reason = "stopped", f"more than max_steps = {max_steps} steps by t = {solver.t:.6g}"
-                event_name = "max_steps"
+            if interrupts.received:
+                code = engine.INTERRUPTED
                 break
-            message = solver.step()
+            if steps >= max_steps:
+                code = engine.MAX_STEPS_REACHED
+                break
+            solver.step()
             steps += 1
             if solver.status == "failed":
-                status, reason = "failed", f"the {method} solver failed at t = {solver.t:.6g}: {message}"
+                code = engine.NEWTON_FAILED
                 break
             t_new, y_new = solver.t, solver.y.copy()
             if not np.all(np.isfinite(y_new)):
-                status, reason = "failed", f"the state became non-finite at t = {t_new:.6g}"
+                code = engine.NON_FINITE
                 break
-            hit = _first_event(events, g_old, solver, t_new, y_new)
-            t_kept = t_new if hit is None else hit[1]
+            dense = solver.dense_output()
+            g_new = np.asarray(events(t_new, y_new, args), dtype=float)
+            hits = []
+            for i in range(g_old.size):
+                up = g_old[i] < 0.0 <= g_new[i]
+                down = g_old[i] > 0.0 >= g_new[i]
+                if (up and direction[i] >= 0) or (down and direction[i] <= 0):
+                    t_hit = brentq(lambda t, i=i: events(t, dense(t), args)[i], solver.t_old, t_new,
+                                   xtol=4.0 * np.finfo(float).eps * max(1.0, abs(t_new)),
+                                   rtol=4.0 * np.finfo(float).eps)
+                    hits.append((t_hit, i))
+            stop_at = t_new
+            for t_hit, i in sorted(hits):
+                counts[i] += 1
+                if terminal[i] and counts[i] >= terminal[i]:
+                    stop_at, stop_event = t_hit, i
+                    break
+            if samples is not None:
+                due = np.searchsorted(samples, stop_at, side="right")
+                for ts in samples[next_sample:due]:
+                    row(ts, dense(ts), SAMPLE)
+                next_sample = due
+            for t_hit, i in sorted(hits):
+                if t_hit > stop_at:
+                    break
+                row(t_hit, dense(t_hit), EVENT | (END if i == stop_event else 0), i)
+            if stop_event >= 0:
+                code = engine.TERMINAL_EVENT
+                break
             if samples is None:
-                ts.append(t_kept)
-                ys.append(y_new if hit is None else hit[2])
-            else:
-                stop = np.searchsorted(samples, t_kept, side="right")
-                if stop > next_sample:
-                    dense = solver.dense_output()
-                    ts.extend(samples[next_sample:stop])
-                    ys.extend(dense(samples[next_sample:stop]).T)
-                    next_sample = stop
-                if hit is not None and (not ts or ts[-1] < t_kept):
-                    ts.append(t_kept)
-                    ys.append(hit[2])
-            if hit is not None:
-                status, event_name = "stopped", events[hit[0]].name
-                reason = events[hit[0]].describe(hit[1])
-                break
-            g_old = [ev.g(t_new, y_new) for ev in events]
-            if bar is not None:
-                bar.update(t_new - bar.n)
+                row(t_new, y_new, STEP | (END if t_new >= t_end else 0))
+            elif t_new >= t_end:
+                rows_kind[-1] |= END
+            g_old = g_new
+            last_t, last_y = t_new, y_new
+            if progress is not None:
+                progress(t_new)
     except KeyboardInterrupt as err:
-        by = f" by {err}" if str(err) else ""
-        status, reason = "interrupted", f"interrupted{by} at t = {_now(solver):.6g}"
-    except (ArithmeticError, ValueError, np.linalg.LinAlgError) as err:
-        status, reason = "failed", f"{type(err).__name__} at t = {_now(solver):.6g}: {err}"
+        code = engine.INTERRUPTED
+        interrupts.received = interrupts.received or str(err) or "SIGINT"
     finally:
-        if bar is not None:
-            bar.close()
-    return Integration(
-        t=np.array(ts), y=np.array(ys).reshape(-1, y0.size).T, status=status, reason=reason,
-        event=event_name, steps=steps, nfev=int(getattr(solver, "nfev", 0)), njev=int(getattr(solver, "njev", 0)),
-        wall_time_s=time.perf_counter() - start)
-
-
-def _now(solver) -> float:
-    return 0.0 if solver is None else solver.t
-
-
-def _first_event(events, g_old, solver, t_new, y_new):
-    """The earliest event crossed in the last step, located on the dense output; or None."""
-    found = None
-    for i, ev in enumerate(events):
-        g_new = ev.g(t_new, y_new)
-        crossed = (g_old[i] > 0 >= g_new) if ev.direction < 0 else (
-            (g_old[i] < 0 <= g_new) if ev.direction > 0 else g_old[i] * g_new <= 0 and g_old[i] != 0)
-        if not crossed:
-            continue
-        dense = solver.dense_output()
-        t_hit = brentq(lambda t, ev=ev: ev.g(t, dense(t)), solver.t_old, t_new,
-                       xtol=4 * np.finfo(float).eps * max(1.0, abs(t_new)), rtol=4 * np.finfo(float).eps)
-        if found is None or t_hit < found[1]:
-            found = (i, t_hit, dense(t_hit))
-    return found
+        interrupts.__exit__(None, None, None)
+    t_stop = rows_t[-1] if code == engine.TERMINAL_EVENT else last_t
+    if code not in (engine.REACHED_END, engine.TERMINAL_EVENT):
+        row(last_t, last_y, END)  # the last finite state reached
+    status = 0 if code == engine.REACHED_END else 1 if code == engine.TERMINAL_EVENT else -1
+    message = engine.stop_message(code, t_stop, stop_event, interrupts.received)
+    if code == engine.NEWTON_FAILED and solver.status == "failed":
+        message = f"the {method} solver failed at t = {t_stop:.17g}"
+    t = np.array(rows_t)
+    y = np.array(rows_y).T.reshape(len(y0), -1)
+    kind = np.array(rows_kind, dtype=np.int64)
+    event = np.array(rows_event, dtype=np.int64)
+    on_event = (kind & EVENT) != 0
+    return Result(t=t, y=y, kind=kind, event=event,
+                  t_events=[t[on_event & (event == i)] for i in range(g_old.size)],
+                  y_events=[y[:, on_event & (event == i)].T for i in range(g_old.size)],
+                  status=status, code=code, message=message, success=status >= 0, stop_event=stop_event,
+                  nfev=int(solver.nfev), njev=int(getattr(solver, "njev", 0)), nlu=int(getattr(solver, "nlu", 0)),
+                  steps=steps, rejected=0, state=None)

@@ -1,64 +1,99 @@
-"""Trajectories of the full model (2.1)-(2.4) and the reduced model (2.11), in one output form.
+"""One simulation API for every model: a system, an initial state and a duration in, a :class:`Trajectory` out.
 
-Both models go through :func:`dynamics.integrate.integrate`; the result is a
-:class:`Trajectory` with SI columns (or, for a dimensionless reduced run without
-an apparatus, lengths in delta and b, times and rates in tau) and the reason the
-run ended.
+:func:`simulate` runs the full equations (2.1)-(2.4) with any force model, or the
+reduced equations (2.11), each with or without rough contact (section 5), with
+the compiled Radau IIA integrator (:mod:`dynamics.engine`) or one of scipy's
+solvers as a cross-check. The result is the same :class:`Trajectory` whatever
+ran, after scipy's ``OdeResult``: the columns, ``status`` and ``message``,
+``success``, the events along the way, and the counts.
+
+Units. With an :class:`~dynamics.apparatus.Apparatus` everything is SI: the
+initial rates in rad/s, ``t_end`` and ``output_interval`` in seconds, the columns
+in s, m, rad, rad/s. With :class:`~dynamics.equations.reduced.ReducedParams`
+alone (the reduced model without a device, as the paper's figures use), times
+and rates are in tau, eps in delta and X_b in b (``dimensionless``).
 """
 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from dynamics.contact import full as full_contact
-from dynamics.contact import reduced as contact
-from dynamics.contact import rough as rough_contact
-from dynamics.contact.roughness import RoughContact
+from dynamics.apparatus import Apparatus
+from dynamics.contact import reduced as reduced_contact
+from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
+from dynamics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 from dynamics.equations import full, reduced
-from dynamics.equations.forces import ForceModel
-from dynamics.equations.limits import (
-    GAP_FLOOR,
-    MAX_REYNOLDS,
-    MAX_TURNS,
-    gap_floor_event,
-    reynolds_event,
-)
+from dynamics.equations.forces import ForceModel, force_model
+from dynamics.equations.limits import LIMIT_EVENTS, Limits, inertia_report, limit_message
+from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
-from dynamics.integrate import Integration, integrate
+from dynamics.integrate import METHODS, integrate
+from lubrication.geometry import check_range
 
-__all__ = ["Initial", "Trajectory", "simulate_contact", "simulate_full", "simulate_full_contact", "simulate_reduced"]
+__all__ = ["PHASE_CODES", "Initial", "Trajectory", "simulate"]
 
-# contact phases as numbers in the trajectory table
-PHASE_CODES = {contact.FREE: 0, contact.SLIDING: 1, contact.LOCKED: 2}
+#: Contact phases as numbers in the trajectory table.
+PHASE_CODES = {FREE: 0, SLIDING: 1, LOCKED: 2}
+
+_ROW_NAMES = ((START, "start"), (STEP, "step"), (SAMPLE, "sample"), (EVENT, "event"), (END, "end"))
 
 
 @dataclass
 class Trajectory:
-    """Columns of a run and how it ended.
+    """A run of any model: its columns and how it ended.
 
-    ``columns`` has t, t_tau, x_b, eps, chi, kappa, one_minus_kappa, phi,
-    omega_a, omega_b (SI, or scaled when ``dimensionless``), and for a run with
-    contact the phase (codes in :data:`PHASE_CODES`) and the scaled reaction
-    c_eps and friction c_chi of (5.1)-(5.2). ``info`` carries what a table
-    cannot, such as the list of contact switches.
+    Attributes
+    ----------
+    columns : dict of ndarray
+        t, t_tau, x_b, eps, chi, kappa, one_minus_kappa, phi, omega_a, omega_b,
+        kappa_dot, phi_dot (SI, or scaled when :attr:`dimensionless`); with contact also the phase
+        (:data:`PHASE_CODES`) and the scaled reaction c_eps and friction c_chi
+        of (5.1)-(5.2). phi is continuous (unwrapped) in every output mode.
+    rows : ndarray of str
+        What each row is: "start", "step", "sample", "event:<name>", "end"
+        (joined with "+" when a row is several).
+    equations, forces, method : str
+    status : str
+        "completed" (reached t_end), "stopped" (a limit or a runaway stopped
+        it: :attr:`event` names it), "failed" or "interrupted".
+    message : str
+        Why the run ended, with units.
+    event : str
+        The event that stopped the run ("" if none).
+    events : list of dict
+        What happened along the way: contact switches ("touch", "lift",
+        "stick", "slip") and limits gone past with ``on_invalid = "warn"``,
+        each ``{"name", "t"}`` (t in the run's time unit).
+    steps, nfev, njev, nlu : int
+        Accepted steps, right-hand side and Jacobian evaluations, LU decompositions.
+    wall_time_s, tau : float
+    dimensionless : bool
+    groups : dict
+        s, upsilon, mu (and delta_over_a with an apparatus).
+    info : dict
+        What a table cannot hold (contact switches, the chosen model, ...).
     """
 
-    columns: dict[str, np.ndarray]
+    columns: dict
+    rows: np.ndarray
     equations: str
     forces: str
+    method: str
     status: str
-    reason: str
+    message: str
     event: str
+    events: list
     steps: int
     nfev: int
     njev: int
+    nlu: int
     wall_time_s: float
     tau: float
     dimensionless: bool
-    method: str
     groups: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
 
@@ -66,148 +101,323 @@ class Trajectory:
     def t(self) -> np.ndarray:
         return self.columns["t"]
 
+    @property
+    def success(self) -> bool:
+        """True when the run reached t_end or stopped at an event it was told to stop at."""
+        return self.status in ("completed", "stopped")
 
-def _result(run: Integration, columns, **info) -> Trajectory:
-    return Trajectory(columns=columns, status=run.status, reason=run.reason, event=run.event,
-                      steps=run.steps, nfev=run.nfev, njev=run.njev, wall_time_s=run.wall_time_s, **info)
 
+def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, *, equations: str | None = None,
+             forces: ForceModel | str = "closed-form", contact=None, limits: Limits = Limits(),
+             method: str = "radau", rtol: float = 1e-8, output_interval: float | None = None, t_eval=None,
+             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper") -> Trajectory:
+    """Integrate a model of the snail cylinder from ``initial`` over ``t_end``.
 
-def simulate_full(apparatus, force_model: ForceModel, initial: Initial, t_end: float, *,
-                  rtol: float = 1e-8, method: str = "LSODA", gap_floor: float = GAP_FLOOR,
-                  max_reynolds: float = MAX_REYNOLDS, progress: str | None = None) -> Trajectory:
-    """The full dimensional model from ``initial`` (SI) over ``t_end`` seconds.
+    Parameters
+    ----------
+    system : Apparatus or ReducedParams
+        The device (SI), or the groups of the reduced model alone (dimensionless).
+    initial : Initial
+        Rates in 1/s with an apparatus, in 1/tau without. kappa' and phi' are
+        not free in (2.11) and must be 0 for the reduced equations.
+    t_end : float
+        Duration: s with an apparatus, tau without.
+    equations : {"full", "reduced"}, optional
+        Default "full" for an apparatus, "reduced" for groups.
+    forces : ForceModel or str
+        The full equations' force model (:func:`dynamics.equations.forces.force_model`);
+        the reduced equations have the closed forms built in.
+    contact : ContactParams or RoughContact, optional
+        Rough contact (section 5); a minimum gap that varies along the surfaces
+        (:class:`dynamics.contact.roughness.RoughContact`) in the reduced equations only.
+    limits : Limits
+        Validity limits and what to do at them (:mod:`dynamics.equations.limits`).
+    method : {"radau", "Radau", "BDF", "LSODA"}
+        The compiled Radau IIA integrator, or one of scipy's (:mod:`dynamics.integrate`).
+    rtol : float
+        Relative tolerance, in [100 eps, 0.1].
+    output_interval : float, optional
+        Output rows at 0, dt, 2 dt, ... from the dense output (and at every
+        event); by default one row per integrator step.
+    t_eval : array_like, optional
+        Output rows at these increasing times in [0, t_end] instead (and at every event).
+    max_steps : int
+        Accepted steps after which the run stops unfinished.
+    progress : callable, optional
+        ``progress(t)`` is called now and then with the time reached.
+    frame_terms : {"paper", "quasi-steady"}
+        The full equations' treatment of the fluid turning with the line of
+        centres: (2.1)-(2.2) as printed, or with m'_a on the centripetal and
+        Coriolis terms (:func:`dynamics.equations.full.frame_force`).
 
-    Stops early, with the reason, when 1 - kappa falls to ``gap_floor`` or the
-    gap Reynolds number max(|Omega_a| a, |Omega_b| b) delta / nu reaches
-    ``max_reynolds``.
+    Returns
+    -------
+    Trajectory
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and its allowed range, for inputs no model can run.
     """
-    p = full.params_array(apparatus)
-    model = full.model_arguments(force_model)
-    typical = full.typical_scales(apparatus)
-    y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot,
-                            initial.phi_dot, initial.omega_a, initial.omega_b)
-    re_scale = apparatus.delta / apparatus.nu
-
-    def one_minus_kappa(y):
-        one_plus = 1.0 + y[0] ** 2 + y[1] ** 2
-        return 1.0 / (one_plus * (1.0 + math.sqrt(1.0 - 1.0 / one_plus)))
-
-    def reynolds_number(y):
-        return re_scale * max(abs(y[4]) * apparatus.a, abs(y[5]) * apparatus.b)
-
-    events = (gap_floor_event(one_minus_kappa, gap_floor), reynolds_event(reynolds_number, max_reynolds))
-    run = integrate(lambda t, y: full.rhs(t, y, p, *model), y0, t_end,
-                    jac=lambda t, y: full.jacobian(t, y, p, *model, typical),
-                    rtol=rtol, atol=rtol * typical, method=method, events=events, progress=progress)
-    obs = full.observables(apparatus, run.y)
-    columns = {"t": run.t, "t_tau": run.t / apparatus.tau, **obs}
-    return _result(run, columns, equations="full", forces=force_model.name, tau=apparatus.tau,
-                   dimensionless=False, method=method, groups=_groups(apparatus))
-
-
-def simulate_full_contact(apparatus, force_model: ForceModel, rough: contact.ContactParams, initial: Initial,
-                          t_end: float, *, rtol: float = 1e-8, method: str = "LSODA",
-                          max_reynolds: float = MAX_REYNOLDS, progress: str | None = None) -> Trajectory:
-    """The full model with rough contact (:mod:`dynamics.contact.full`) over ``t_end`` seconds.
-
-    ``rough`` carries kappa* and the paper's scaled friction angle psi; the
-    physical friction coefficient is tan(psi_hat) = (delta/a) tan(psi) (C2).
-    Columns as :func:`simulate_full` and, as :func:`simulate_contact`, the
-    phase, C_e = N/(m'_a g) and C_x = -(a/delta) F/(m'_a g) of (5.1)-(5.2).
-    """
-    y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot,
-                            initial.phi_dot, initial.omega_a, initial.omega_b)
-    scale = apparatus.delta / apparatus.nu / apparatus.tau  # gap Reynolds number per scaled rate
-    rates = {contact.FREE: (4, 5)}
-
-    def events(phase):
-        i, j = rates.get(phase, (2, 3))
-        reynolds = reynolds_event(lambda y: scale * max(abs(y[i]) * apparatus.a, abs(y[j]) * apparatus.b),
-                                  max_reynolds, apparatus.tau)
-        return (reynolds,)
-
-    run = full_contact.simulate_full_contact(apparatus, force_model, rough, y0, t_end, rtol=rtol,
-                                             method=method, extra_events=events, progress=progress)
-    t = run["t"]
-    columns = {"t": t, "t_tau": run["t_tau"], **{k: run[k] for k in ("x_b", "eps", "chi", "kappa",
-                                                                     "one_minus_kappa", "phi", "omega_a",
-                                                                     "omega_b")},
-               "phase": np.array([PHASE_CODES[p] for p in run["phase"]], dtype=float),
-               "c_eps": run["c_eps"], "c_chi": run["c_chi"]}
-    status = {0: "completed", 1: "stopped"}.get(run["status"], run["stop_reason"])
-    info = {"phase_codes": PHASE_CODES, "final_phase": str(run["phase"][-1]) if t.size else "",
-            "switches": [{"t": sw.t, "from": sw.old, "to": sw.new} for sw in run["switches"]],
-            "tan_friction": full_contact.friction_coefficient(apparatus, rough)}
-    return Trajectory(columns=columns, equations="full", forces=force_model.name, status=status,
-                      reason=run["message"] if run["status"] else f"reached t_end = {t_end:.6g} s",
-                      event=run["stop_reason"] if run["status"] == 1 else "",
-                      steps=run["steps"], nfev=run["nfev"], njev=run["njev"], wall_time_s=run["wall_time_s"],
-                      tau=apparatus.tau, dimensionless=False, method=method, groups=_groups(apparatus), info=info)
-
-
-def simulate_reduced(params: reduced.ReducedParams, initial: Initial, t_end_tau: float, *,
-                     apparatus=None, rtol: float = 1e-8, method: str = "LSODA",
-                     gap_floor: float = GAP_FLOOR, max_turns: float = MAX_TURNS,
-                     progress: str | None = None) -> Trajectory:
-    """The reduced model (2.11) from ``initial`` over ``t_end_tau`` units of tau.
-
-    With an ``apparatus`` the initial rates are in 1/s and the output is SI;
-    without, everything is scaled (times and rates in tau, eps in delta, X_b in b).
-    kappa' and phi' are not free in (2.11): ``initial.kappa_dot`` and ``phi_dot``
-    are not used. Stops as :func:`dynamics.equations.reduced.simulate_reduced` does.
-    """
-    tau = apparatus.tau if apparatus is not None else 1.0
-    run = reduced.simulate_reduced(params, t_end_tau, initial.kappa, initial.phi, initial.omega_a * tau,
-                                   initial.omega_b * tau, rtol=rtol, atol=rtol, method=method,
-                                   gap_floor=gap_floor, max_turns=max_turns, progress=progress)
-    return _from_reduced(run, params, apparatus, method, {})
-
-
-def simulate_contact(params: reduced.ReducedParams, rough: contact.ContactParams | RoughContact,
-                     initial: Initial, t_end_tau: float, *, apparatus=None, rtol: float = 1e-8,
-                     method: str = "LSODA", max_turns: float = MAX_TURNS,
-                     progress: str | None = None) -> Trajectory:
-    """The reduced model with rough contact (section 5); output as :func:`simulate_reduced`.
-
-    ``rough`` is a uniform minimum gap kappa* (:class:`dynamics.contact.reduced.ContactParams`)
-    or one that varies with the orientation of both surfaces
-    (:class:`dynamics.contact.roughness.RoughContact`), whose material angles are added as columns.
-    """
-    tau = apparatus.tau if apparatus is not None else 1.0
-    simulate = (rough_contact.simulate_rough_contact if isinstance(rough, RoughContact)
-                else contact.simulate_contact)
-    run = simulate(params, rough, t_end_tau, initial.kappa, initial.phi, initial.omega_a * tau,
-                   initial.omega_b * tau, rtol=rtol, atol=rtol, method=method, max_turns=max_turns,
-                   progress=progress)
-    extra = {"phase": np.array([PHASE_CODES[p] for p in run.phase], dtype=float),
-             "c_eps": run.c_eps, "c_chi": run.c_chi}
-    if isinstance(run, rough_contact.RoughTrajectory):
-        extra.update(theta_a=run.theta_a, theta_b=run.theta_b)
-    info = {"phase_codes": PHASE_CODES, "final_phase": str(run.phase[-1]) if run.phase.size else "",
-            "switches": [{"t": sw.t * tau, "from": sw.old, "to": sw.new} for sw in run.switches]}
-    trajectory = _from_reduced(run, params, apparatus, method, extra)
-    trajectory.info.update(info)
+    dimensionless = isinstance(system, ReducedParams)
+    if not dimensionless and not isinstance(system, Apparatus):
+        msg = f"system must be an Apparatus or ReducedParams, got {type(system).__name__}"
+        raise TypeError(msg)
+    if not isinstance(initial, Initial):
+        msg = f"initial must be an Initial, got {type(initial).__name__}"
+        raise TypeError(msg)
+    unit = "tau" if dimensionless else "s"
+    t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True, unit=unit)
+    equations = equations or ("reduced" if dimensionless else "full")
+    if equations not in ("full", "reduced"):
+        msg = f"equations must be 'full' or 'reduced', got {equations!r}"
+        raise ValueError(msg)
+    if dimensionless and equations == "full":
+        msg = "the full equations need a physical apparatus: pass an Apparatus (Apparatus.from_groups builds one)"
+        raise ValueError(msg)
+    if method not in METHODS:
+        msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
+        raise ValueError(msg)
+    rtol = check_range("rtol", rtol, 100 * np.finfo(float).eps, 0.1, high_open=False)
+    if output_interval is not None:
+        if t_eval is not None:
+            msg = "give output_interval or t_eval, not both"
+            raise ValueError(msg)
+        output_interval = check_range("output_interval", output_interval, 0.0, t_end, low_open=True,
+                                      high_open=False, unit=unit)
+        count = int(math.floor(t_end / output_interval * (1.0 + 1e-12)))
+        t_eval = output_interval * np.arange(count + 1)
+    if t_eval is not None:
+        t_eval = np.asarray(t_eval, dtype=float)
+        if t_eval.ndim != 1 or t_eval.size == 0 or np.any(np.diff(t_eval) <= 0) or t_eval[0] < 0 \
+                or t_eval[-1] > t_end:
+            msg = f"t_eval must be a non-empty increasing array of times in [0, t_end] = [0, {t_end:g}] {unit}"
+            raise ValueError(msg)
+    if not isinstance(limits, Limits):
+        msg = f"limits must be a Limits, got {type(limits).__name__}"
+        raise TypeError(msg)
+    _check_start(initial, limits, contact, equations)
+    if frame_terms not in full.FRAME_TERMS:
+        msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
+        raise ValueError(msg)
+    if frame_terms != "paper" and equations == "reduced":
+        msg = "frame_terms applies to the full equations; the reduced equations (2.11) drop these O(delta/a) terms"
+        raise ValueError(msg)
+    run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress)
+    run.frame_terms = frame_terms
+    start = time.perf_counter()
+    if equations == "reduced":
+        if initial.kappa_dot != 0.0 or initial.phi_dot != 0.0:
+            msg = ("initial.kappa_dot and initial.phi_dot must be 0 for the reduced equations, where (2.11a-b) "
+                   f"fix kappa' and phi' from the state; got {initial.kappa_dot!r} and {initial.phi_dot!r}")
+            raise ValueError(msg)
+        trajectory = run.reduced(initial, contact)
+    else:
+        model = forces if isinstance(forces, ForceModel) else force_model(forces)
+        trajectory = run.full(initial, model, contact)
+        trajectory.info["frame_terms"] = frame_terms
+    trajectory.wall_time_s = time.perf_counter() - start
     return trajectory
 
 
-def _from_reduced(run, params, apparatus, method: str, extra: dict) -> Trajectory:
-    """A :class:`Trajectory` from a reduced-model run (times in tau), in SI when there is an apparatus."""
-    if apparatus is not None:
-        tau, delta, b, alpha = apparatus.tau, apparatus.delta, apparatus.b, apparatus.alpha
-        groups = _groups(apparatus)
-    else:
-        tau, delta, b, alpha = 1.0, 1.0, 1.0, 0.0
-        groups = {"s": params.s, "upsilon": params.upsilon, "mu": params.mu_ratio}
-    columns = {"t": run.t * tau, "t_tau": run.t, "kappa": run.kappa, "one_minus_kappa": run.one_minus_kappa,
-               "eps": run.kappa * delta, "chi": run.phi - alpha, "phi": run.phi, "omega_a": run.omega_a / tau,
-               "omega_b": run.omega_b / tau, "x_b": run.x_b * b, **extra}
-    status = {0: "completed", 1: "stopped"}.get(run.status, run.stop_reason)
-    return Trajectory(columns=columns, equations="reduced", forces="closed-form", status=status,
-                      reason=run.message, event=run.stop_reason if run.status == 1 else "",
-                      steps=run.steps, nfev=run.nfev, njev=run.njev, wall_time_s=run.wall_time_s,
-                      tau=tau, dimensionless=apparatus is None, method=method, groups=groups)
+def _check_start(initial: Initial, limits: Limits, contact, equations: str) -> None:
+    """Refuse a start the run would reject at t = 0, naming the value and the reason."""
+    one_minus = initial.gap
+    if contact is None and one_minus <= limits.gap_floor:
+        msg = (f"initial.kappa must leave 1 - kappa above the gap floor {limits.gap_floor:g} (the run would stop "
+               f"at once), got 1 - kappa = {one_minus:.3g}; lower initial.kappa or the gap floor")
+        raise ValueError(msg)
+    if isinstance(contact, ContactParams) and initial.kappa > contact.kappa_star:
+        msg = (f"initial.kappa must be in [0, kappa_star] = [0, {contact.kappa_star:.12g}]: the asperities touch at "
+               f"kappa_star; got {initial.kappa!r}")
+        raise ValueError(msg)
+    if contact is not None and not isinstance(contact, ContactParams) and equations == "full":
+        msg = ("a minimum gap that varies along the surfaces is modelled in the reduced equations only; use "
+               "equations='reduced' or a uniform ContactParams")
+        raise ValueError(msg)
 
 
-def _groups(apparatus) -> dict:
-    return {"s": apparatus.s, "upsilon": apparatus.upsilon, "mu": apparatus.mu_ratio,
-            "delta_over_a": apparatus.delta_over_a}
+class _Run:
+    """The settings every model's run shares, and the conversion of its rows to a Trajectory."""
+
+    def __init__(self, system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress):
+        self.system, self.dimensionless, self.t_end = system, dimensionless, t_end
+        self.limits, self.method, self.rtol = limits, method, rtol
+        self.max_steps, self.progress = max_steps, progress
+        self.tau = 1.0 if dimensionless else system.tau
+        self.unit = "tau" if dimensionless else "s"
+        self.t_eval = t_eval
+
+    # -- the models -----------------------------------------------------------------------
+
+    def reduced(self, initial: Initial, contact) -> Trajectory:
+        params = self.system if self.dimensionless else self.system.reduced_params
+        tau = self.tau
+        t_end_tau = self.t_end / tau
+        t_eval = None if self.t_eval is None else self.t_eval / tau
+        progress = None if self.progress is None else (lambda t: self.progress(t * tau))
+        rates = (initial.omega_a * tau, initial.omega_b * tau)
+        if contact is not None:
+            from dynamics.contact.roughness import RoughContact
+
+            runner = reduced_contact.run_contact
+            if isinstance(contact, RoughContact):
+                from dynamics.contact.rough import run_rough_contact as runner
+            fields = runner(params, contact, t_end_tau, initial.kappa, initial.phi, *rates, limits=self.limits,
+                            method=self.method, rtol=self.rtol, t_eval=t_eval, max_steps=self.max_steps,
+                            progress=progress)
+            return self._contact_trajectory(fields, "reduced", "closed-form", params)
+        per_rate = (0.0, 0.0)
+        if not self.dimensionless:
+            ap = self.system
+            per_rate = (ap.delta**2 / (ap.nu * tau), ap.b * ap.delta**2 / (ap.a * ap.nu * tau))
+        limits = self.limits
+        args = reduced.run_args(params, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
+                                reynolds_per_rate=per_rate, x_b_limit=2.0 * math.pi * limits.max_turns)
+        y0 = reduced.initial_state(initial.kappa, initial.phi, *rates, one_minus_kappa0=initial.one_minus_kappa)
+        stops = int(limits.stops)
+        run = integrate(reduced.rhs, reduced.jacobian, (0.0, t_end_tau), y0, args=args, method=self.method,
+                        rtol=self.rtol, atol=self.rtol, events=reduced.events, terminal=(stops, stops, 1, 0, 0),
+                        direction=(-1, -1, -1, 0, 1), t_eval=t_eval, max_steps=self.max_steps, progress=progress)
+        cols = reduced.columns(run.y, initial.phi, args)
+        fields = {"t": run.t, "kind": run.kind, "event_names": _names(run.event, reduced.EVENT_NAMES), **cols,
+                  "stop": reduced.EVENT_NAMES[run.stop_event] if run.stop_event >= 0 else "",
+                  "code": run.code, "status_code": run.status, "message": run.message,
+                  "steps": run.steps, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu}
+        return self._trajectory(fields, "reduced", "closed-form", params)
+
+    def full(self, initial: Initial, model: ForceModel, contact) -> Trajectory:
+        ap = self.system
+        if contact is not None:
+            from dynamics.contact import full as full_contact
+
+            fields = full_contact.run_full_contact(ap, model, contact, initial, self.t_end, limits=self.limits,
+                                                   method=self.method, rtol=self.rtol, t_eval=self.t_eval,
+                                                   max_steps=self.max_steps, progress=self.progress,
+                                                   frame_terms=self.frame_terms)
+            return self._contact_trajectory(fields, "full", model.name, ap.reduced_params)
+        limits = self.limits
+        args = full.run_args(ap, model, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
+                             max_turns=limits.max_turns, frame_terms=self.frame_terms)
+        y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
+                                initial.omega_a, initial.omega_b, one_minus_kappa=initial.gap)
+        stops = int(limits.stops)
+        run = integrate(full.rhs, full.jacobian, (0.0, self.t_end), y0, args=args, method=self.method,
+                        rtol=self.rtol, atol=self.rtol * args[2], events=full.events,
+                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=self.t_eval,
+                        max_steps=self.max_steps, progress=self.progress)
+        obs = full.observables(ap, run.y, initial.phi)
+        fields = {"t": run.t / self.tau, "kind": run.kind, "event_names": _names(run.event, full.EVENT_NAMES),
+                  "kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
+                  "kappa_dot": obs["kappa_dot"] * self.tau, "phi_dot": obs["phi_dot"] * self.tau,
+                  "omega_a": obs["omega_a"] * self.tau, "omega_b": obs["omega_b"] * self.tau,
+                  "x_b": obs["x_b"] / ap.b,
+                  "stop": full.EVENT_NAMES[run.stop_event] if run.stop_event >= 0 else "",
+                  "code": run.code, "status_code": run.status, "message": run.message,
+                  "steps": run.steps, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu}
+        return self._trajectory(fields, "full", model.name, ap.reduced_params)
+
+    # -- rows to a Trajectory ---------------------------------------------------------------
+
+    def _contact_trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
+        fields = dict(fields, stop=fields["stop_event"], status_code=fields["status"])
+        trajectory = self._trajectory(fields, equations, forces, params)
+        keep = self._keep(fields)
+        trajectory.columns["phase"] = np.array([PHASE_CODES[p] for p in fields["phase"][keep]], dtype=float)
+        for name in ("c_eps", "c_chi", "theta_a", "theta_b"):
+            if name in fields:
+                trajectory.columns[name] = fields[name][keep]
+        trajectory.info.update(phase_codes=PHASE_CODES, final_phase=str(fields["phase"][-1]),
+                               switches=[{"t": sw.t * self.tau, "from": sw.old, "to": sw.new}
+                                         for sw in fields["switches"]])
+        return trajectory
+
+    @staticmethod
+    def _keep(fields: dict) -> np.ndarray:
+        """Rows to output: the crossings of the vertical keep phi continuous, and are not rows a user asked for."""
+        kind, names = fields["kind"], fields["event_names"]
+        return ~(((kind & EVENT) != 0) & (names == "turn") & ((kind & ~EVENT) == 0))
+
+    def _trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
+        """Columns in the output units from scaled rows (t in tau, rates in 1/tau, X_b in b)."""
+        tau = self.tau
+        kind, names = fields["kind"], fields["event_names"]
+        keep = self._keep(fields)
+        if self.dimensionless:
+            delta, b, alpha = 1.0, 1.0, 0.0
+        else:
+            ap = self.system
+            delta, b, alpha = ap.delta, ap.b, ap.alpha
+        t_tau = np.asarray(fields["t"], dtype=float)[keep]
+        kappa = fields["kappa"][keep]
+        phi = fields["phi"][keep]
+        columns = {"t": t_tau * tau, "t_tau": t_tau, "x_b": fields["x_b"][keep] * b, "eps": kappa * delta,
+                   "chi": phi - alpha, "kappa": kappa, "one_minus_kappa": fields["one_minus_kappa"][keep],
+                   "phi": phi, "omega_a": fields["omega_a"][keep] / tau, "omega_b": fields["omega_b"][keep] / tau,
+                   "kappa_dot": fields["kappa_dot"][keep] / tau, "phi_dot": fields["phi_dot"][keep] / tau}
+        if self.t_eval is not None:
+            # rows at requested times carry those times exactly, not their round trip through tau
+            sampled = np.nonzero((kind[keep] & SAMPLE) != 0)[0]
+            columns["t"][sampled] = self.t_eval[:sampled.size]
+        rows = _row_labels(kind[keep], names[keep])
+        status, message, event = self._status(fields, columns)
+        on_event = np.nonzero((kind & EVENT) != 0)[0]
+        along = [{"name": names[i], "t": float(fields["t"][i]) * tau} for i in on_event]
+        warned = [e for e in along if e["name"] in LIMIT_EVENTS and e["name"] != event]
+        switches = [e for e in along if e["name"] in ("touch", "lift", "stick", "slip")]
+        trajectory = Trajectory(columns=columns, rows=rows, equations=equations, forces=forces, method=self.method,
+                                status=status, message=message, event=event, events=switches + warned,
+                                steps=int(fields["steps"]), nfev=int(fields["nfev"]), njev=int(fields["njev"]),
+                                nlu=int(fields["nlu"]), wall_time_s=0.0, tau=tau, dimensionless=self.dimensionless,
+                                groups=_groups(self.system, params))
+        if not self.dimensionless and columns["t"].size:
+            trajectory.info["inertia"] = inertia_report(self.system, columns)
+        if warned:
+            trajectory.info["limits_passed"] = [dict(w, reason=limit_message(w["name"], self.limits,
+                                                                             self._when(w["t"] / tau)))
+                                                for w in warned]
+        return trajectory
+
+    def _when(self, t_tau: float) -> str:
+        return f"t = {t_tau * self.tau:.6g} {self.unit}"
+
+    def _status(self, fields: dict, columns: dict) -> tuple[str, str, str]:
+        """(status, message with units, stop event)."""
+        t_last = float(columns["t"][-1]) / self.tau if columns["t"].size else 0.0
+        stop = fields["stop"]
+        if fields["status_code"] == 0:
+            return "completed", f"reached t_end = {self.t_end:.6g} {self.unit}", ""
+        if fields["status_code"] == 1 and stop in LIMIT_EVENTS:
+            return "stopped", limit_message(stop, self.limits, self._when(t_last)), stop
+        if fields.get("code") == INTERRUPTED:
+            by = fields["message"].split(" at t = ")[0]  # "interrupted" or "interrupted by SIGTERM"
+            return "interrupted", f"{by} at {self._when(t_last)}", ""
+        if stop == "max_switches":
+            return "stopped", fields["message"], stop
+        message = fields["message"]
+        for word in ("t = ",):
+            if word in message:
+                message = message.split(word)[0] + self._when(t_last)
+        return "failed", message, ""
+
+
+def _names(events: np.ndarray, names: tuple) -> np.ndarray:
+    """The event name of each row ("" where the row is no event)."""
+    return np.array(("", *names), dtype=object)[events + 1]
+
+
+def _row_labels(kind: np.ndarray, names: np.ndarray) -> np.ndarray:
+    """What each row is ("step", "sample", "event:touch", "start+sample", ...), from its flags and event."""
+    labels = np.empty(kind.size, dtype=object)
+    plain = names == ""
+    for value in np.unique(kind):
+        for event in (np.unique(names[kind == value]) if value & EVENT else [""]):
+            parts = [label if flag != EVENT else f"event:{event}" for flag, label in _ROW_NAMES if value & flag]
+            labels[(kind == value) & ((names == event) | plain if not event else names == event)] = "+".join(parts)
+    return labels
+
+
+def _groups(system, params) -> dict:
+    if isinstance(system, ReducedParams):
+        return {"s": params.s, "upsilon": params.upsilon, "mu": params.mu_ratio}
+    return {"s": system.s, "upsilon": system.upsilon, "mu": system.mu_ratio, "delta_over_a": system.delta_over_a}

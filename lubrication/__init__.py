@@ -8,9 +8,13 @@ exact 2-D Stokes solution for circular walls, or by finite elements.
     geometry.py        the annulus, the fluid, the motion, the forces
     closed_form.py     (2.5)-(2.7)
     reynolds.py        the Reynolds equation in the gap angle (kernels in _kernels.py)
+    reynolds2d.py      the Reynolds equation on (theta, z): an annulus of finite length (_kernels2d.py)
+    finite_length.py   the finite-length factors of the five coefficients
     cavitation.py      film rupture: half-Sommerfeld, Swift-Stieber, JFO
     stokes_exact.py    the exact Stokes resistance of the eccentric annulus
     stokes.py          Stokes flow by finite elements (flow fields, a check)
+    stokes3d.py        3-D Stokes flow in an annulus of finite length, by finite elements (a check)
+    navier_stokes.py   steady Navier-Stokes flow in the annulus: where inertia matters
     forces.py          one entry point for every model
 
 The names below are imported on first use, so that ``import lubrication`` is cheap.
@@ -28,6 +32,10 @@ _WHERE = {
     "reynolds_pressure": "reynolds",
     "ExactResistance": "stokes_exact", "exact_forces": "stokes_exact", "exact_resistance": "stokes_exact",
     "stokes_exact_forces": "stokes_exact",
+    "GapProfile2D": "reynolds2d", "Reynolds2DPressure": "reynolds2d", "reynolds2d_forces": "reynolds2d",
+    "reynolds2d_pressure": "reynolds2d", "tilted_gap": "reynolds2d",
+    "finite_length_factors": "finite_length", "finite_length_factor_kernel": "finite_length",
+    "factor_table": "finite_length",
 }
 
 __all__ = sorted(_WHERE)

@@ -23,7 +23,9 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
         Lubrication closed forms (2.5)-(2.7), the numerical Reynolds solver
         (``options`` go to :func:`lubrication.reynolds.reynolds_forces`; with
         ``cavitation`` other than "none", and ``p_cav``, ``p_ref``, to
-        :func:`lubrication.cavitation.cavitating_forces`), the exact 2-D
+        :func:`lubrication.cavitation.cavitating_forces`; with ``ends`` "open" or
+        "sealed", and ``n_axial``, to :func:`lubrication.reynolds2d.reynolds2d_forces`,
+        the annulus of finite length), the exact 2-D
         Stokes solution for circular walls (:mod:`lubrication.stokes_exact`,
         no options), or the finite-element Stokes solve at any gap width (``options`` set its mesh,
         see :func:`lubrication.stokes.stokes_forces`; needs the ``fem`` extra).
@@ -34,6 +36,11 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "c
             raise ValueError(msg)
         return closed_form_forces(annulus, motion, fluid)
     if model == "reynolds":
+        ends = options.pop("ends", "infinite")
+        if ends != "infinite":
+            from .reynolds2d import reynolds2d_forces
+
+            return reynolds2d_forces(annulus, motion, fluid, ends=ends, **options)
         cavitation = options.pop("cavitation", "none")
         if cavitation != "none":
             return cavitating_forces(annulus, motion, fluid, cavitation, **options)

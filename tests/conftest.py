@@ -1,5 +1,14 @@
+import os
+import signal
+import tempfile
+
 import numpy as np
 import pytest
+
+# Tests write only into temporary folders: the stored tables (finite-length factors, pint's
+# definitions) go to a temporary folder of this test run, not to the user's ~/.cache. Subprocesses inherit it.
+_CACHE = tempfile.TemporaryDirectory(prefix="snail-test-cache-")
+os.environ["SNAIL_CACHE"] = _CACHE.name
 
 
 @pytest.fixture(autouse=True)
@@ -13,3 +22,12 @@ def _raise_on_floating_point_errors():
 @pytest.fixture
 def rng():
     return np.random.default_rng(20070523)
+
+
+@pytest.fixture
+def ctrl_c():
+    """Ctrl-C raises KeyboardInterrupt during the test, as on a terminal, even where the tests run in
+    the background (a shell starts background jobs with SIGINT ignored)."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)

@@ -21,10 +21,25 @@ from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
 from dynamics.engine import (
-    END, EVENT, MAX_STEPS_REACHED, NEWTON_FAILED, NON_FINITE, PAUSED, REACHED_END, SAMPLE, START,
-    STEP, STEP_TOO_SMALL, TERMINAL_EVENT, INTERRUPTED, engine_for, integrate,
+    END,
+    EVENT,
+    INTERRUPTED,
+    MAX_STEPS_REACHED,
+    NON_FINITE,
+    PAUSED,
+    SAMPLE,
+    START,
+    STEP,
+    STEP_TOO_SMALL,
+    TERMINAL_EVENT,
+    driver,
+    engine_for,
+    integrate,
+    linalg,
+    no_events,
+    radau,
 )
-from dynamics.engine import linalg, radau
+from dynamics.engine.state import STATUS
 from lubrication._jit import jit
 
 EPS = np.finfo(float).eps
@@ -365,7 +380,7 @@ def check_against(problem, y_ref, rtols):
             atol = ROBERTSON_ATOL * rtol
             run = integrate(robertson, robertson_jac, (0.0, 1e5), [1.0, 0.0, 0.0], args=MU, rtol=rtol,
                             atol=atol, t_eval=ROBERTSON_TIMES)
-        t, y = samples(run)
+        _, y = samples(run)
         assert run.success
         assert scaled_error(y, y_ref, rtol, atol).max() < 3.0, rtol
 
@@ -402,3 +417,246 @@ def test_same_steps_as_scipy_radau(problem, rtol):
         assert abs(mine - theirs) <= 0.01 * theirs + 1
     if problem == "vdp":
         np.testing.assert_allclose(run.t[:101], ref.t[:101], rtol=1e-6)
+
+
+# --------------------------------------------------------------------------- events
+
+LEVELS_NEVER = np.array([2.0, 2.0])  # cos t never reaches 2: only the first event can fire
+TEN_PI = 10 * np.pi
+
+
+@jit
+def clock(t, y, args):
+    """Zero at t = args[2]: a root a step can end on exactly."""
+    return np.array([t - args[2]])
+
+
+def test_events_at_known_times():
+    """cos t = 0 at pi/2 + k pi: found to 1e-12 relative, g = 0 there, and the run goes on to t_end."""
+    run = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], args=LEVELS_NEVER, rtol=1e-12,
+                    atol=1e-12, events=oscillator_events)
+    exact = np.pi / 2 + np.pi * np.arange(10)
+    assert run.status == 0 and run.t[-1] == TEN_PI
+    assert run.t_events[0].size == 10 and run.t_events[1].size == run.t_events[2].size == 0
+    np.testing.assert_allclose(run.t_events[0], exact, rtol=1e-12)
+    assert np.abs(run.y_events[0][:, 0]).max() < 1e-12  # g(t_event, y_event) = y_0 = 0
+    rows = (run.kind & EVENT) != 0
+    np.testing.assert_array_equal(run.t[rows], run.t_events[0])
+    np.testing.assert_array_equal(run.event[rows], 0)
+    assert np.all(np.diff(run.t) >= 0)
+
+
+@pytest.mark.parametrize(("direction", "first"), [(1, 1.5 * np.pi), (-1, 0.5 * np.pi), (0, 0.5 * np.pi)])
+def test_event_direction(direction, first):
+    """cos t rises through zero at 3 pi/2 + 2 k pi and falls at pi/2 + 2 k pi."""
+    run = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], args=LEVELS_NEVER, rtol=1e-10,
+                    atol=1e-10, events=oscillator_events, direction=[direction, 0, 0])
+    spacing = np.pi if direction == 0 else 2 * np.pi
+    expected = first + spacing * np.arange(10 if direction == 0 else 5)
+    np.testing.assert_allclose(run.t_events[0], expected, rtol=1e-9)
+
+
+@pytest.mark.parametrize("count", [1, 3])
+def test_terminal_event_stops_the_run(count):
+    """The count-th occurrence ends the run there, with the state of the event."""
+    run = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], args=LEVELS_NEVER, rtol=1e-10,
+                    atol=1e-10, events=oscillator_events, terminal=[count, 0, 0])
+    t_stop = np.pi / 2 + np.pi * (count - 1)
+    assert run.status == 1 and run.code == TERMINAL_EVENT and run.stop_event == 0
+    assert run.t_events[0].size == count
+    assert run.t[-1] == run.t_events[0][-1] == pytest.approx(t_stop, rel=1e-9)
+    assert run.kind[-1] == EVENT | END
+    np.testing.assert_allclose(run.y[:, -1], [0.0, -np.sin(t_stop)], atol=1e-9)
+    np.testing.assert_array_equal(run.y[:, -1], run.state.y)
+
+
+def test_two_events_in_one_step_earliest_first():
+    """cos t = 0.5 (event 2) at pi/3, then cos t = 0.49 (event 1), inside one loose-tolerance step:
+    recorded in time order, not in index order."""
+    levels = np.array([0.49, 0.5])
+    run = integrate(oscillator, oscillator_jac, (0.0, 2.0), [1.0, 0.0], args=levels, rtol=1e-3, atol=1e-3,
+                    events=oscillator_events, terminal=[0, 1, 0])
+    on_event = np.flatnonzero(run.kind & EVENT)
+    np.testing.assert_array_equal(run.event[on_event], [2, 1])
+    assert on_event[1] == on_event[0] + 1  # no step between them: one step held both
+    np.testing.assert_allclose(run.t[on_event], [np.pi / 3, math.acos(0.49)], rtol=1e-3)
+    assert run.code == TERMINAL_EVENT and run.stop_event == 1
+    stopped_first = integrate(oscillator, oscillator_jac, (0.0, 2.0), [1.0, 0.0], args=levels, rtol=1e-3,
+                              atol=1e-3, events=oscillator_events, terminal=[0, 0, 1])
+    assert stopped_first.t_events[1].size == 0  # the later crossing lies beyond the stop
+
+
+def test_free_fall_lands_at_the_exact_time():
+    """h(t) = h0 - g t^2 / 2 is a polynomial the method integrates exactly: t* = sqrt(2 h0 / g) to rounding."""
+    g, h0 = 9.81, 10.0
+    run = integrate(fall, fall_jac, (0.0, 10.0), [h0, 0.0], args=np.array([g]), rtol=1e-6, atol=1e-9,
+                    events=height, terminal=True, direction=-1)
+    t_star = math.sqrt(2 * h0 / g)
+    assert run.t[-1] == pytest.approx(t_star, rel=8 * EPS)
+    assert abs(run.y[0, -1]) < 1e-13 and run.y[1, -1] == pytest.approx(-g * t_star, rel=1e-14)
+
+
+def test_event_starting_at_zero_does_not_fire_at_t0():
+    """Thrown up from the ground: h(t0) = 0, yet the landing at 2 v0 / g is the only event.
+
+    (scipy's solve_ivp would record an event at t0 and, terminal, stop there.)
+    """
+    g, v0 = 9.81, 5.0
+    for terminal in (True, False):
+        run = integrate(fall, fall_jac, (0.0, 2.0), [0.0, v0], args=np.array([g]), rtol=1e-8, atol=1e-10,
+                        events=height, terminal=terminal)
+        np.testing.assert_allclose(run.t_events[0], [2 * v0 / g], rtol=1e-13)
+
+
+def test_root_on_a_step_end_fires_once():
+    """With steps clamped to 0.5 from 0, a step ends exactly on the root t = 1 of t - 1."""
+    run = integrate(decay, decay_jac, (0.0, 3.0), [1.0], args=np.array([0.1, 0.0, 1.0]), rtol=1e-3, atol=1e-3,
+                    events=clock, first_step=0.5, max_step=0.5)
+    assert np.any(run.t[(run.kind & STEP) != 0] == 1.0)
+    np.testing.assert_array_equal(run.t_events[0], [1.0])
+
+
+# --------------------------------------------------------------------------- output
+
+def test_samples_at_step_times_are_the_steps():
+    """Sampling at the accepted step times reproduces the steps bit for bit (same steps, exact end points)."""
+    steps = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6)
+    run = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6, t_eval=steps.t)
+    np.testing.assert_array_equal(run.t, steps.t)
+    np.testing.assert_array_equal(run.y, steps.y)
+    assert run.kind[0] == START | SAMPLE and run.kind[-1] == SAMPLE | END
+    assert (run.nfev, run.steps) == (steps.nfev, steps.steps)
+
+
+def test_samples_and_events_in_time_order():
+    t_eval = np.linspace(0.0, 9.0, 10)
+    run = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], args=LEVELS_NEVER, rtol=1e-10,
+                    atol=1e-10, events=oscillator_events, t_eval=t_eval)
+    assert np.all(np.diff(run.t) >= 0)
+    t, y = samples(run)
+    np.testing.assert_array_equal(t, t_eval)
+    np.testing.assert_allclose(y, [np.cos(t), -np.sin(t)], atol=1e-9)
+    assert ((run.kind & EVENT) != 0).sum() == 10
+    assert run.kind[-1] == END and run.t[-1] == TEN_PI  # t_end is no sample: an END row of its own
+
+
+def test_terminal_event_ends_the_samples():
+    t_eval = np.linspace(0.0, 3.0, 7)
+    run = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], args=LEVELS_NEVER, rtol=1e-10,
+                    atol=1e-10, events=oscillator_events, terminal=[1, 0, 0], t_eval=t_eval)
+    t, _ = samples(run)
+    np.testing.assert_array_equal(t, t_eval[t_eval <= np.pi / 2])
+    assert run.kind[-1] == EVENT | END
+
+
+@pytest.mark.parametrize("every_step", [True, False])
+@pytest.mark.parametrize("chunk_steps", [1, 7, 100])
+def test_chunks_change_nothing(every_step, chunk_steps):
+    """Pausing every chunk_steps steps and continuing gives the same run, bit for bit."""
+    options = {"args": MU, "rtol": 1e-6, "atol": 1e-6, "events": vdp_events,
+               "t_eval": None if every_step else np.linspace(0.0, 2000.0, 301)}
+    whole = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], chunk_steps=10**9, **options)
+    chunked = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], chunk_steps=chunk_steps, **options)
+    for name in ("t", "y", "kind", "event"):
+        np.testing.assert_array_equal(getattr(chunked, name), getattr(whole, name))
+    np.testing.assert_array_equal(chunked.state.counters, whole.state.counters)
+    np.testing.assert_array_equal(chunked.state.scalars, whole.state.scalars)
+
+
+def test_ctrl_c_between_chunks_keeps_the_run_and_it_can_continue(ctrl_c):
+    calls = []
+
+    def progress(t):
+        calls.append(t)
+        if len(calls) == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    whole = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6)
+    stopped = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6,
+                        chunk_steps=50, progress=progress)
+    assert stopped.code == INTERRUPTED and stopped.status == -1 and stopped.steps == 150
+    assert stopped.kind[-1] == END and stopped.t[-1] == calls[-1]
+    np.testing.assert_array_equal(stopped.t[:-1], whole.t[:151])
+    state = stopped.state
+    assert state.counters[STATUS] == PAUSED  # the state itself can go on
+    rest = engine_for(MU).advance(vdp, vdp_jac, no_events, MU, state, 0)
+    np.testing.assert_array_equal(np.concatenate([stopped.t[:-1], rest[0]]), whole.t)
+    np.testing.assert_array_equal(np.concatenate([stopped.y[:, :-1], rest[1]], axis=1), whole.y)
+
+
+# --------------------------------------------------------------------------- failures
+
+def test_non_finite_derivative_fails_with_a_reason():
+    run = integrate(poisoned, decay_jac, (0.0, 3.0), [1.0], args=np.array([1.0, 1.0]), rtol=1e-6, atol=1e-9)
+    assert run.status == -1 and not run.success and run.code == NON_FINITE
+    assert "not finite" in run.message
+    assert 1.0 - 1e-6 < run.t[-1] <= 1.0 and run.kind[-1] == END
+
+
+@pytest.mark.parametrize(("fun", "jac"), [(poisoned, decay_jac), (decay, poisoned_jac)])
+def test_non_finite_at_the_start(fun, jac):
+    run = integrate(fun, jac, (0.0, 3.0), [1.0], args=np.array([1.0, -1.0]), rtol=1e-6, atol=1e-9)
+    assert run.code == NON_FINITE and run.steps == 0
+    np.testing.assert_array_equal(run.kind, [START, END])
+
+
+def test_max_steps():
+    run = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6, max_steps=5)
+    assert run.code == MAX_STEPS_REACHED and run.status == -1 and run.steps == 5
+    assert run.t.size == 7 and run.kind[-1] == END and run.t[-1] == run.t[-2]
+
+
+def test_blow_up_stops_at_the_singularity():
+    """y = 1/(1 - t): the steps shrink to rounding where the numerical solution blows up,
+    within its global error of t = 1; scipy's Radau stops there too, for the same reason."""
+    run = integrate(blow_up, blow_up_jac, (0.0, 2.0), [1.0], args=NO_ARGS, rtol=1e-6, atol=1e-9)
+    ref = solve_ivp(blow_up, (0.0, 2.0), [1.0], method="Radau", rtol=1e-6, atol=1e-9, jac=blow_up_jac,
+                    args=(NO_ARGS,))
+    assert run.code == STEP_TOO_SMALL and run.status == -1 and ref.status == -1
+    assert abs(run.t[-1] - 1.0) < 1e-7 and run.y[0, -1] > 1e12
+    assert run.t[-1] == pytest.approx(ref.t[-1], abs=1e-12)
+
+
+@pytest.mark.parametrize(("options", "name"), [
+    ({"rtol": 1e-16}, "rtol"),
+    ({"rtol": 1.0}, "rtol"),
+    ({"atol": 0.0}, "atol"),
+    ({"atol": [1e-6, 1e-6, 1e-6]}, "atol"),
+    ({"y0": [np.nan, 0.0]}, "y0"),
+    ({"t_span": (1.0, 1.0)}, "t_span"),
+    ({"t_eval": [0.0, 2.0, 1.0]}, "t_eval"),
+    ({"t_eval": [0.0, 11.0]}, "t_eval"),
+    ({"first_step": 20.0}, "first_step"),
+    ({"max_step": 0.0}, "max_step"),
+    ({"max_steps": 0}, "max_steps"),
+    ({"chunk_steps": 0}, "chunk_steps"),
+    ({"events": oscillator_events, "direction": [2, 0, 0]}, "direction"),
+    ({"events": oscillator_events, "terminal": [-1, 0, 0]}, "terminal"),
+    ({"events": oscillator_events, "terminal": [1, 0]}, "terminal"),
+])
+def test_inputs_are_checked(options, name):
+    kwargs = {"t_span": (0.0, 10.0), "y0": [1.0, 0.0], "args": LEVELS_NEVER, **options}
+    t_span, y0 = kwargs.pop("t_span"), kwargs.pop("y0")
+    with pytest.raises(ValueError, match=name):
+        integrate(oscillator, oscillator_jac, t_span, y0, **kwargs)
+
+
+# --------------------------------------------------------------------------- compiled callers
+
+@jit
+def run_vdp(y0, t_end, args, rtol, atol):
+    """A compiled entry point that calls the generic driver with the model's functions as globals."""
+    return driver.solve(vdp, vdp_jac, vdp_events, args, 0.0, y0, t_end, rtol, atol, 0.0, np.inf, 1_000_000,
+                        np.zeros(0), True, np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
+
+
+@pytest.mark.slow
+def test_generic_driver_from_compiled_code_matches():
+    """The driver compiled for this model inside a caller takes the same steps as the shared one."""
+    run = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6, events=vdp_events)
+    t, y, kind, event, state = run_vdp(np.array([2.0, 0.0]), 2000.0, MU, 1e-6, np.full(2, 1e-6))
+    np.testing.assert_array_equal(t, run.t)
+    np.testing.assert_array_equal(y, run.y)
+    np.testing.assert_array_equal(kind, run.kind)
+    np.testing.assert_array_equal(event, run.event)
+    np.testing.assert_array_equal(state.counters, run.state.counters)

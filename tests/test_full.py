@@ -8,8 +8,9 @@ import pytest
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import full
 from dynamics.equations.forces import closed_form, reynolds
+from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
-from dynamics.simulate import Initial, simulate_full, simulate_reduced
+from dynamics.simulation import Initial, simulate
 from validation.dynamics_checks import inertial_time
 
 RTOL = 1e-10
@@ -31,13 +32,12 @@ def test_approaches_the_reduced_model_at_first_order_in_delta_over_a():
     s, upsilon, mu = 0.5, 1.0, 2.0
     t_tau = np.linspace(0.0, 10.0, 401)
     names = ("kappa", "phi", "omega_a", "omega_b")
-    ref = _on_grid(simulate_reduced(ReducedParams(s, upsilon, mu), Initial(0.3, 0.5), 10.0, rtol=RTOL),
-                   names, t_tau)
+    ref = _on_grid(simulate(ReducedParams(s, upsilon, mu), Initial(0.3, 0.5), 10.0, rtol=RTOL), names, t_tau)
     ratios = np.array([0.1, 0.03, 0.01, 0.003])
     diffs = []
     for r in ratios:
         apparatus = Apparatus.from_groups(s, upsilon, mu, r)
-        run = simulate_full(apparatus, closed_form(), Initial(0.3, 0.5), 10.0 * apparatus.tau, rtol=RTOL)
+        run = simulate(apparatus, Initial(0.3, 0.5), 10.0 * apparatus.tau, forces=closed_form(), rtol=RTOL)
         assert run.status == "completed"
         got = _on_grid(run, names, t_tau)
         diffs.append(max(np.max(np.abs(got[k] - ref[k])) for k in names))
@@ -54,7 +54,7 @@ def test_reynolds_forces_give_the_closed_form_trajectory():
     t = np.linspace(0, t_end, 400)
 
     def sample(model, rtol):
-        run = simulate_full(apparatus, model, Initial(0.5, 0.5), t_end, rtol=rtol)
+        run = simulate(apparatus, Initial(0.5, 0.5), t_end, forces=model, rtol=rtol)
         return np.array([np.interp(t, run.columns["t"], run.columns[k]) for k in ("kappa", "phi", "x_b")])
 
     closed = sample(closed_form(), RTOL)
@@ -64,7 +64,7 @@ def test_reynolds_forces_give_the_closed_form_trajectory():
 
 
 def _sedimentation_deviation(apparatus, kappa0, t_from_tau=0.0):
-    run = simulate_full(apparatus, closed_form(), Initial(kappa0, math.pi), 8 * apparatus.tau, rtol=RTOL)
+    run = simulate(apparatus, Initial(kappa0, math.pi), 8 * apparatus.tau, forces=closed_form(), rtol=RTOL)
     t = run.columns["t_tau"]
     big_t = t + kappa0 / math.sqrt(1 - kappa0**2)
     late = t >= t_from_tau
@@ -83,14 +83,14 @@ def test_level_plane_sediments_as_3_3_up_to_the_inertial_lag(ratio):
 
 def test_steel_apparatus_on_a_level_plane_sediments_as_3_3_after_its_inertial_time():
     steel = preset("steel", alpha=0.0)
-    # t_i = 0.55 tau here (delta/a = 0.41); measured deviation after 3 t_i: 0.0058
+    # t_i = 0.55 tau here (delta/a = 0.41); measured deviation after 3 t_i: 0.0060
     assert _sedimentation_deviation(steel, 0.3, t_from_tau=3 * inertial_time(steel)) < 0.01
 
 
 def test_starts_exactly_at_the_centre():
     apparatus = preset("steel")
-    run = simulate_full(apparatus, closed_form(), Initial(0.0, 0.0), 10.0)
-    assert run.status == "completed"
+    run = simulate(apparatus, Initial(0.0, 0.0), 10.0, forces=closed_form())
+    assert run.status == "completed" and run.equations == "full"
     for values in run.columns.values():
         assert np.all(np.isfinite(values))
     assert run.columns["kappa"][-1] > 0.5
@@ -102,41 +102,62 @@ def test_close_approach_to_contact_keeps_the_gap_precision():
     On a level plane the gap closes as 1 - kappa ~ 1/(2 T^2) (3.3), with no rocking to resolve.
     """
     apparatus = preset("steel", alpha=0.0)
-    run = simulate_full(apparatus, closed_form(), Initial(0.99, math.pi), 1e5 * apparatus.tau,
-                        gap_floor=1e-10)
+    run = simulate(apparatus, Initial(0.99, math.pi), 1e5 * apparatus.tau, forces=closed_form(),
+                   limits=Limits(gap_floor=1e-10))
     omk = run.columns["one_minus_kappa"]
     assert run.status == "stopped" and run.event == "gap_floor"
     assert omk[-1] == pytest.approx(1e-10, rel=1e-6)
     assert np.all(np.isfinite(omk)) and np.all(omk > 0)
 
 
-def test_runaway_stops_where_stokes_flow_ends():
+def _reduced_reynolds(apparatus, c, i):
+    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - phi', at row ``i`` of columns ``c``."""
+    w_a, w_b = c["omega_a"][i] - c["phi_dot"][i], c["omega_b"][i] - c["phi_dot"][i]
+    return max(abs(w_a) * apparatus.a, abs(w_b) * apparatus.b) * apparatus.delta**2 / (apparatus.nu * apparatus.a)
+
+
+def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
+    """s > 1: no rocking state, the cylinders run away, until the turn limit stops the run.
+
+    The guard of quasi-steady Stokes flow is the Reynolds number of the flow relative to the
+    line of centres, Re*: it peaks (2.5) in the first swing and falls as the pair co-rotates
+    (0.04 after 10 turns), so the runaway itself does not end the Stokes regime. A tighter
+    guard, max_gap_reynolds = 1 (a 10% force error), stops the same release in its first
+    swing with Re* = 1 at the last row (to 1e-5: the event fades Re* out near kappa = 0 by
+    kappa^2 / (kappa^2 + 1e-6)).
+    """
     apparatus = preset("aluminium", alpha=math.radians(12.0))
     assert apparatus.s > 1  # no rocking state exists: it must run away
-    run = simulate_full(apparatus, closed_form(), Initial(0.5, 0.5), 100.0)
-    assert run.status == "stopped" and run.event == "reynolds"
-    assert "Reynolds number" in run.reason
+    run = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=closed_form(), limits=Limits(max_turns=10))
+    assert run.status == "stopped" and run.event == "runaway" and run.rows[-1] == "event:runaway+end"
+    assert "turned max_turns = 10 times" in run.message
+    assert run.columns["x_b"][-1] == pytest.approx(20.0 * math.pi * apparatus.b, rel=1e-12)
+    assert run.columns["omega_b"][-1] * apparatus.tau > 10.0
+    guarded = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=closed_form(),
+                       limits=Limits(max_gap_reynolds=1.0))
+    assert guarded.status == "stopped" and guarded.event == "reynolds"
+    assert "Reynolds number Re* reached max_gap_reynolds = 1 at" in guarded.message
+    assert guarded.t[-1] < run.t[-1] / 5
+    assert _reduced_reynolds(apparatus, guarded.columns, -1) == pytest.approx(1.0, rel=1e-5)
 
 
 def test_rhs_is_regular_through_the_centre():
     """The right-hand side is continuous at eps = 0 for any direction of approach."""
     apparatus = preset("steel")
-    p = full.params_array(apparatus)
-    model = full.model_arguments(closed_form())
+    args = full.run_args(apparatus, closed_form(), gap_floor=1e-9)
     v = np.array([1e-4, -2e-4])
-    at_centre = full.rhs(0.0, np.array([0.0, 0.0, *v, 0.3, 0.2, 0.0]), p, *model)
+    at_centre = full.rhs(0.0, np.array([0.0, 0.0, *v, 0.3, 0.2, 0.0]), args)
     for angle in np.linspace(0, 2 * math.pi, 7):
         tiny = 1e-9 * np.array([math.sin(angle), math.cos(angle)])
-        near = full.rhs(0.0, np.array([*tiny, *v, 0.3, 0.2, 0.0]), p, *model)
+        near = full.rhs(0.0, np.array([*tiny, *v, 0.3, 0.2, 0.0]), args)
         np.testing.assert_allclose(near[2:], at_centre[2:], rtol=1e-6, atol=1e-9 * np.abs(at_centre).max())
 
 
 def test_jacobian_matches_a_finer_difference():
     apparatus = preset("steel")
-    p = full.params_array(apparatus)
-    model = full.model_arguments(closed_form())
-    typical = full.typical_scales(apparatus)
+    args = full.run_args(apparatus, closed_form(), gap_floor=1e-9)
+    params, model, typical, events = args
     y = full.initial_state(apparatus, 0.8, 0.4, 0.01, 0.02, 0.1, 0.05)
-    jac = full.jacobian(0.0, y, p, *model, typical)
-    finer = full.jacobian(0.0, y, p, *model, typical * 1e-2)
+    jac = full.jacobian(0.0, y, args)
+    finer = full.jacobian(0.0, y, (params, model, typical * 1e-2, events))
     np.testing.assert_allclose(jac, finer, rtol=1e-6, atol=1e-9 * np.abs(jac).max())

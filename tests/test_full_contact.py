@@ -13,8 +13,7 @@ from dynamics.contact import steady as contact_steady
 from dynamics.contact.reduced import ContactParams
 from dynamics.equations import full
 from dynamics.equations.forces import closed_form
-from dynamics.scenes import Initial
-from dynamics.simulate import simulate_full_contact
+from dynamics.simulation import Initial, simulate
 
 FORCES = closed_form()
 MODEL = full.model_arguments(FORCES)
@@ -43,6 +42,7 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
     ap = device()
     surfaces = ContactParams(0.98, 0.3)
     p = full.params_array(ap)
+    free_args = full.run_args(ap, FORCES, gap_floor=1e-9)
     rng = np.random.default_rng(3)
     eps = surfaces.kappa_star * ap.delta
     for _ in range(5):
@@ -53,11 +53,11 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
         y = np.array([chi, chi_dot, omega_a, omega_b, 0.0])
         sigma = math.copysign(1.0, full_contact.slip(ap, surfaces.kappa_star, y))
         rates = full_contact.contact_rates(y, p, surfaces.kappa_star, surfaces.one_minus_kappa_star, locked,
-                                           sigma, full_contact.friction_coefficient(ap, surfaces), *MODEL)
+                                           sigma, full_contact.friction_coefficient(ap, surfaces), MODEL)
         e_eps, e_chi = np.array([math.sin(chi), math.cos(chi)]), np.array([math.cos(chi), -math.sin(chi)])
         r, r_dot = eps * e_eps, eps * chi_dot * e_chi
         r_ddot = eps * (rates[0] * e_chi - chi_dot**2 * e_eps)
-        free = full.rhs(0.0, full_contact._free_state(ap, surfaces, y), p, *MODEL)
+        free = full.rhs(0.0, full_contact._free_state(ap, surfaces, y), free_args)
         in_contact = energy_rate(ap, *r, r_dot, r_ddot, omega_a, omega_b, rates[1], rates[2])
         without = energy_rate(ap, *r, r_dot, free[2:4], omega_a, omega_b, free[4], free[5])
         friction_power = rates[4] * full_contact.slip(ap, surfaces.kappa_star, y)
@@ -129,8 +129,8 @@ def test_steady_rolling_approaches_section_5_at_first_order_in_delta_over_a(psi)
 
 
 def run(ap, kappa_star, psi, t_end_tau, kappa0=0.5):
-    return simulate_full_contact(ap, FORCES, ContactParams(kappa_star, psi),
-                                 Initial(kappa=kappa0, phi=0.3), t_end_tau * ap.tau, rtol=1e-9)
+    return simulate(ap, Initial(kappa=kappa0, phi=0.3), t_end_tau * ap.tau, forces=FORCES,
+                    contact=ContactParams(kappa_star, psi), rtol=1e-9)
 
 
 @pytest.mark.parametrize("psi, phase", [(0.05, contact.SLIDING), (0.5, contact.LOCKED)])
@@ -165,7 +165,7 @@ def test_extremes_of_contact_run_cleanly(kappa_star, psi, phase):
     ap = device()
     traj = run(ap, kappa_star, psi, 10_000.0 if kappa_star > 0.99 else 300.0)  # settles over ~1/zeta* tau
     c = traj.columns
-    assert traj.status == "completed", traj.reason
+    assert traj.status == "completed", traj.message
     assert traj.info["final_phase"] == phase
     assert all(np.all(np.isfinite(v)) for v in c.values())
     assert traj.steps < 100_000
@@ -175,8 +175,8 @@ def test_extremes_of_contact_run_cleanly(kappa_star, psi, phase):
 
 def test_a_release_at_the_contact_gap_starts_in_contact():
     ap = device()
-    traj = simulate_full_contact(ap, FORCES, ContactParams(0.98, 0.5), Initial(kappa=0.98, phi=3.5),
-                                 50.0 * ap.tau)
+    traj = simulate(ap, Initial(kappa=0.98, phi=3.5), 50.0 * ap.tau, forces=FORCES, contact=ContactParams(0.98, 0.5))
+    assert traj.status == "completed" and traj.equations == "full"
     assert traj.columns["phase"][0] > 0 and np.all(traj.columns["kappa"] == 0.98)
 
 

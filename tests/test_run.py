@@ -1,14 +1,29 @@
 """`snail run` end to end: outputs, exit codes, bad scenes, and runs that stop early."""
 
 import json
+import math
+import signal
 
 import numpy as np
 import pytest
 
 from dynamics.app.cli import main
-from dynamics.integrate import integrate
+from dynamics.app.output import CSV_COLUMNS
+from dynamics.engine import INTERRUPTED, NON_FINITE
+from dynamics.integrate import METHODS, integrate
+from lubrication._jit import jit
 
 SHORT = ["--t-end", "2 s"]
+
+
+def _header(folder):
+    return (folder / "trajectory.csv").read_text().splitlines()[0].split(",")
+
+
+def _contract_header(header, extra):
+    """The contract's columns first, the model's own ``extra`` ones after them, the row kind last."""
+    return (tuple(header[:len(CSV_COLUMNS)]) == CSV_COLUMNS and set(extra) <= set(header[len(CSV_COLUMNS):-1])
+            and header[-1] == "row")
 
 
 def test_default_scene_writes_the_contract_outputs(tmp_path, capsys):
@@ -19,8 +34,9 @@ def test_default_scene_writes_the_contract_outputs(tmp_path, capsys):
                 "s", "upsilon", "mu", "delta_over_a"):
         assert key in summary
     assert summary["status"] == "completed" and summary["t_end"] == pytest.approx(2.0)
-    header = (out / "trajectory.csv").read_text().splitlines()[0].split(",")
+    header = _header(out)
     assert {"t", "x_b", "eps", "chi", "kappa", "phi", "omega_a", "omega_b", "t_tau"} <= set(header)
+    assert _contract_header(header, ())
     assert (out / "trajectory.png").stat().st_size > 10_000
     assert json.loads((out / "summary.json").read_text()) == summary
     assert "[apparatus]" in (out / "scene.resolved.toml").read_text()
@@ -59,40 +75,75 @@ def test_reynolds_forces_run_from_the_command_line(tmp_path, capsys):
 
 
 def test_a_run_stopped_by_its_validity_limit_exits_1_and_keeps_its_data(tmp_path, capsys):
+    """The aluminium runaway (s = 1.9) with the Reynolds guard at Re* = 1 (a 10% force error): the
+    relative flow passes it in the first swing (Re* peaks at 2.5, at t = 0.06 s), which ends the run."""
     out = tmp_path / "run"
-    code = main(["run", "-o", str(out), "--set", "apparatus.preset='aluminium'",
-                 "--set", "incline.alpha='12 deg'", "--t-end", "30 s", "--json"])
+    code = main(["run", "-o", str(out), "--set", "apparatus.preset='aluminium'", "--set", "incline.alpha='12 deg'",
+                 "--set", "run.max_gap_reynolds=1", "--t-end", "30 s", "--json"])
     summary = json.loads(capsys.readouterr().out)
     assert code == 1
-    assert summary["status"] == "stopped" and "Reynolds number" in summary["reason"]
-    assert summary["regime"] == "runaway"
+    assert summary["status"] == "stopped" and summary["stop_event"] == "reynolds"
+    assert "Reynolds number" in summary["reason"] and "max_gap_reynolds = 1 " in summary["reason"]
+    assert summary["regime"] == "runaway" and summary["t_end"] < 0.1
     rows = (out / "trajectory.csv").read_text().splitlines()
-    assert len(rows) > 100
+    assert len(rows) - 1 >= summary["steps"] and rows[-1].endswith(",event:reynolds+end")
 
 
-def test_an_interrupted_integration_keeps_every_step_it_took():
+@jit
+def _decay(t, y, args):
+    """y' = -y."""
+    return -y
+
+
+@jit
+def _decay_jacobian(t, y, args):
+    return -np.eye(y.size)
+
+
+@jit
+def _fails_after_one(t, y, args):
+    """y' = 1 up to t = 1, then not a number: a model that breaks down during a run."""
+    return np.full(y.size, 1.0 if t <= 1.0 else math.nan)
+
+
+@jit
+def _zero_jacobian(t, y, args):
+    return np.zeros((y.size, y.size))
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_an_interrupted_integration_keeps_every_step_it_took(method, ctrl_c):
+    """Ctrl-C (a real SIGINT, sent from the progress callback) ends the run with what it computed."""
     calls = {"n": 0}
 
-    def fun(t, y):
+    def progress(t):
         calls["n"] += 1
-        if calls["n"] > 200:
-            raise KeyboardInterrupt
-        return -y
+        if calls["n"] == 20:
+            signal.raise_signal(signal.SIGINT)
 
-    run = integrate(fun, np.array([1.0]), 100.0, method="RK45", rtol=1e-10)
-    assert run.status == "interrupted" and "interrupted at t" in run.reason
-    assert run.t.size > 5 and np.allclose(run.y[0], np.exp(-run.t), rtol=1e-8)
+    run = integrate(_decay, _decay_jacobian, (0.0, 100.0), np.array([1.0]), args=np.zeros(1), method=method,
+                    rtol=1e-10, atol=1e-12, chunk_steps=5, progress=progress)
+    assert run.status == -1 and run.code == INTERRUPTED and not run.success
+    assert "interrupted by SIGINT at t" in run.message
+    assert 5 < run.t.size and run.t[-1] < 100.0
+    # every row is on the solution: the steps taken are kept, not discarded
+    np.testing.assert_allclose(run.y[0], np.exp(-run.t), rtol=1e-8)
 
 
-def test_a_failing_right_hand_side_is_reported_not_raised():
-    def fun(t, y):
-        if t > 1.0:
-            raise ZeroDivisionError("float division by zero")
-        return np.ones(1)
+@pytest.mark.parametrize("method", METHODS)
+def test_a_failing_right_hand_side_is_reported_not_raised(method):
+    """A right-hand side that turns NaN after t = 1 ends the run as failed, with the steps before it.
 
-    run = integrate(fun, np.zeros(1), 5.0, method="RK45")
-    assert run.status == "failed" and "ZeroDivisionError" in run.reason
-    assert run.t[-1] <= 1.0 + 1e-12 and run.t.size > 1
+    The compiled engine reports the non-finite right-hand side; scipy's Radau and
+    BDF see their Newton iteration fail and say so. Either way every row kept is
+    a finite state on the solution y = t, the last one at t <= 1.
+    """
+    run = integrate(_fails_after_one, _zero_jacobian, (0.0, 5.0), np.zeros(1), args=np.zeros(1), method=method)
+    assert run.status == -1 and not run.success and run.t.size > 1
+    assert run.code == NON_FINITE or (method != "radau" and f"the {method} solver failed" in run.message), \
+        run.message
+    assert np.all(np.isfinite(run.y)) and run.t[-1] <= 1.0 + 1e-12
+    np.testing.assert_allclose(run.y[0], run.t, rtol=1e-12, atol=1e-15)  # y = t up to the failure
 
 
 FIGURE_7 = """
@@ -126,8 +177,7 @@ def test_a_contact_scene_settles_into_steady_rolling(tmp_path, capsys, psi, regi
     assert summary["switches"][0]["t"] == pytest.approx(5.8207, abs=1e-4)
     steady = steady_state(0.25, 0.98, psi)
     assert summary["final"]["omega_b"] == pytest.approx(steady.omega_b, rel=1e-6)
-    header = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()[0]
-    assert header.endswith("phase,c_eps,c_chi")
+    assert _contract_header(_header(tmp_path / "out"), ("phase", "c_eps", "c_chi"))
 
 
 def test_contact_in_the_full_model_runs_from_the_default_scene(tmp_path, capsys):
@@ -137,8 +187,7 @@ def test_contact_in_the_full_model_runs_from_the_default_scene(tmp_path, capsys)
     summary = json.loads(capsys.readouterr().out)
     assert summary["model"] == "full" and summary["status"] == "completed"
     assert summary["switches"][0]["from"] == "free" and summary["final"]["kappa"] == 0.98
-    header = (tmp_path / "out" / "trajectory.csv").read_text().splitlines()[0]
-    assert header.endswith("phase,c_eps,c_chi")
+    assert _contract_header(_header(tmp_path / "out"), ("phase", "c_eps", "c_chi"))
 
 
 def test_a_varying_minimum_gap_in_the_full_model_is_refused(tmp_path, capsys):
@@ -172,8 +221,7 @@ def test_a_rough_contact_scene_rolls_irregularly_and_deterministically(tmp_path,
         summaries.append(json.loads(capsys.readouterr().out))
     assert len(summaries[0]["switches"]) > 3
     assert summaries[0]["final"] == summaries[1]["final"]
-    header = (tmp_path / "one" / "trajectory.csv").read_text().splitlines()[0]
-    assert header.endswith("theta_a,theta_b")
+    assert _contract_header(_header(tmp_path / "one"), ("phase", "c_eps", "c_chi", "theta_a", "theta_b"))
 
 
 @pytest.mark.parametrize("cavitation", ["half-sommerfeld", "swift-stieber", "jfo"])
@@ -182,15 +230,20 @@ def test_steady_rolling_on_a_cavitating_film_is_recognised(cavitation):
 
     From about 2 s the gap, the angle and the speed stay constant; the classifier
     says so, with the spreads that decided it (the full film of the same scene keeps
-    closing and is not steady).
+    closing and is not steady). As the inner centre swings past the outer one in the
+    first 0.02 s, the ruptured film lets the flow relative to the line of centres
+    pass the default Reynolds guard Re* = 10: the runs warn there and go on.
     """
     from dynamics.app.regime import STEADY_SPREAD, classify
     from dynamics.app.run import run_scene
     from dynamics.scenes import load_scene
 
-    base = ["model.forces=reynolds", "model.n=128", "run.t_end=20"]
+    base = ["model.forces=reynolds", "model.n=128", "run.t_end=20", "run.on_invalid='warn'"]
     scene = load_scene(overrides=[*base, f"cavitation.model={cavitation}", "cavitation.p_cav=101320"])
-    regime, evidence = classify(run_scene(scene))
+    trajectory = run_scene(scene)
+    assert trajectory.status == "completed"
+    assert [(p["name"], p["t"] < 0.1) for p in trajectory.info["limits_passed"]] == [("reynolds", True)]
+    regime, evidence = classify(trajectory)
     assert regime == "steady rolling"
     assert evidence["one_minus_kappa_relative_spread_late"] < STEADY_SPREAD
     full_film, evidence = classify(run_scene(load_scene(overrides=base)))

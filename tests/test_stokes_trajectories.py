@@ -1,9 +1,5 @@
 """The Stokes-against-lubrication trajectory group in its quick form."""
 
-import pytest
-
-pytest.importorskip("skfem")
-
 from validation import stokes_trajectories
 
 

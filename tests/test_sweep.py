@@ -21,7 +21,7 @@ from dynamics.app.sweeps.sweep import (
     run_sweep,
     slope_limits,
 )
-from dynamics.simulate import Trajectory
+from dynamics.simulation import Trajectory
 
 # mu_ = 1 and Upsilon = 1 as in the paper's figures 2 (s = 1/4 rocks) and 3 (s = 0.9 runs away).
 BASE = """
@@ -119,9 +119,10 @@ def test_a_failed_trajectory_is_failed_with_the_numbers_it_reached():
     columns = {"t_tau": [0.0, 1.0, 2.0], "phi": [0.0, 0.1, 0.2], "kappa": [0.5, 0.6, 0.7],
                "one_minus_kappa": [0.5, 0.4, 0.3], "omega_b": [0.0, 0.1, 0.2]}
     trajectory = Trajectory(columns={k: np.array(v) for k, v in columns.items()},
-                            equations="reduced", forces="closed-form", status="failed", reason="step failed",
-                            event="", steps=2, nfev=9, njev=1, wall_time_s=0.0, tau=1.0, dimensionless=True,
-                            method="LSODA")
+                            rows=np.array(["start", "step", "end"], dtype=object), equations="reduced",
+                            forces="closed-form", method="radau", status="failed", message="step failed",
+                            event="", events=[], steps=2, nfev=9, njev=1, nlu=1, wall_time_s=0.0, tau=1.0,
+                            dimensionless=True)
     regime, numbers = classify_point(trajectory)
     assert regime == "failed" and numbers["t_end_tau"] == 2.0 and numbers["final_kappa"] == 0.7
 

@@ -12,7 +12,6 @@ import argparse
 import json
 import math
 import re
-import signal
 import sys
 import time
 from importlib.metadata import entry_points, version
@@ -95,6 +94,12 @@ def _add_forces(subparsers) -> None:
                    help="Reynolds: cells around the gap (default 32; use a few hundred with cavitation)")
     p.add_argument("--grid", default="sommerfeld", choices=["sommerfeld", "uniform"],
                    help="Reynolds: grid uniform in the Sommerfeld angle or in theta")
+    p.add_argument("--ends", default="infinite", choices=["infinite", "open", "sealed"],
+                   help="Reynolds: per unit length of an infinitely long annulus (default), or the gap of "
+                        "--length opening into end regions at both ends (open) or closed there (sealed), "
+                        "solved on (theta, z)")
+    p.add_argument("--n-axial", type=int, default=64,
+                   help="Reynolds with --ends open|sealed: cells along the half length (default 64)")
     p.add_argument("--profile", default="thin", choices=["thin", "eccentric"],
                    help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
     p.add_argument("--cavitation", default="none", choices=["none", "half-sommerfeld", "swift-stieber", "jfo"],
@@ -165,7 +170,9 @@ def _run_forces(args) -> int:
                         omega_a=args.omega_a, omega_b=args.omega_b)
         fluid = Fluid(nu=args.nu, rho=args.rho)
         options = {"closed-form": {}, "stokes-exact": {},
-                   "reynolds": {"n": args.n, "grid": args.grid, "profile": args.profile,
+                   "reynolds": {"n": args.n, "profile": args.profile,
+                                **({"grid": args.grid} if args.ends == "infinite" else
+                                   {"ends": args.ends, "n_axial": args.n_axial}),
                                 **({"cavitation": args.cavitation, "p_cav": args.p_cav, "p_ref": args.p_ref}
                                    if args.cavitation != "none" else {})},
                    "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
@@ -265,31 +272,53 @@ def _add_run(subparsers) -> None:
     p.add_argument("--forces", choices=["closed-form", "reynolds", "stokes-exact", "stokes", "auto"],
                    help="force model, overriding the scene (stokes-exact: the exact 2-D Stokes forces, which "
                         "'stokes' also names in a run; auto: the cheapest meeting model.tolerance)")
-    p.add_argument("--method", default="LSODA", choices=["LSODA", "BDF", "Radau"],
-                   help="scipy integrator (default LSODA)")
+    p.add_argument("--method", default="radau", choices=["radau", "Radau", "BDF", "LSODA"],
+                   help="integrator: the compiled Radau IIA (radau, default) or one of scipy's, for cross-checks")
+    p.add_argument("--output-interval", metavar="T",
+                   help="rows of trajectory.csv at this interval, from the dense output, and at every event: "
+                        "seconds, or a string with units such as '0.1 s' (default: one row per step)")
+    p.add_argument("--no-plot", action="store_true", help="do not draw trajectory.png")
     p.add_argument("--set", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override one scene value (repeatable), e.g. --set initial.kappa=0.3")
     p.add_argument("--json", action="store_true", help="print summary.json to stdout")
     p.set_defaults(run=_run_scene)
 
 
-def _interrupt(signum, _frame):
-    """SIGINT (Ctrl-C) or SIGTERM stops a run, which keeps what it computed and says which signal."""
-    raise KeyboardInterrupt(signal.Signals(signum).name)
+class _Progress:
+    """A tqdm bar on a terminal, refreshed at most once a second; called with the time reached."""
+
+    def __init__(self, total: float, unit: str):
+        from tqdm import tqdm
+
+        self.bar = tqdm(total=total, desc="snail run", unit=unit, mininterval=1.0, leave=False,
+                        bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} " + unit + " [{elapsed}<{remaining}]")
+
+    def __call__(self, t: float) -> None:
+        self.bar.update(t - self.bar.n)
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def _progress_bar(total: float, unit: str):
+    """A :class:`_Progress` on a terminal; None when stderr is piped."""
+    return _Progress(total, unit) if sys.stderr.isatty() else None
 
 
 def _run_scene(args) -> int:
     from dynamics.app.folder import FolderError, OutputFolder
     from dynamics.app.output import write_outputs
+    from dynamics.equations.limits import WARN_FORCE_ERROR
     from dynamics.app.run import run_scene
     from dynamics.scenes import SceneError, load_scene, resolved_toml
 
     overrides = list(args.set)
-    if args.t_end is not None:
-        try:  # a bare number is in seconds, anything else a string with units
-            overrides.append(f"run.t_end={float(args.t_end)!r}")
-        except ValueError:
-            overrides.append(f"run.t_end={json.dumps(args.t_end)}")
+    for key, value in (("run.t_end", args.t_end), ("run.output_interval", args.output_interval)):
+        if value is not None:
+            try:  # a bare number is in seconds, anything else a string with units
+                overrides.append(f"{key}={float(value)!r}")
+            except ValueError:
+                overrides.append(f"{key}={json.dumps(value)}")
     if args.model is not None:
         overrides.append(f'model.equations="{args.model}"')
     if args.forces is not None:
@@ -299,16 +328,26 @@ def _run_scene(args) -> int:
         folder = OutputFolder(args.output).__enter__()  # checked and locked before anything runs
     except (SceneError, FolderError) as err:
         raise UsageError(str(err)) from err
-    previous = {s: signal.signal(s, _interrupt) for s in (signal.SIGINT, signal.SIGTERM)}
+    bar = _progress_bar(scene.run.t_end, "s" if scene.apparatus is not None else "tau")
     try:
         try:
-            trajectory = run_scene(scene, method=args.method, progress="snail run")
+            trajectory = run_scene(scene, method=args.method, progress=bar)
         except SceneError as err:
             raise UsageError(str(err)) from err
-        info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source)
+        finally:
+            if bar is not None:
+                bar.close()
+        for passed in trajectory.info.get("limits_passed", []):
+            print(f"snail run: warning: {passed['reason']}", file=sys.stderr)
+        inertia = trajectory.info.get("inertia", {})
+        if inertia.get("max_estimated_force_error", 0.0) > WARN_FORCE_ERROR:
+            print(f"snail run: warning: fluid inertia: the quasi-steady Stokes forces may be in error by up to "
+                  f"{inertia['max_estimated_force_error']:.0%} (reduced gap Reynolds number up to "
+                  f"{inertia['max_reduced_reynolds']:.2g} at t = {inertia['t_at_max_reduced_reynolds']:.3g} s); "
+                  "see summary.json 'inertia'", file=sys.stderr)
+        info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
+                             plot=not args.no_plot)
     finally:
-        for s, handler in previous.items():
-            signal.signal(s, handler)
         folder.__exit__(None, None, None)
     if args.json:
         print(json.dumps(info, indent=2))

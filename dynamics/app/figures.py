@@ -29,7 +29,7 @@ def _title(trajectory) -> str:
     forces = _FORCES.get(forces.split("/")[0], forces) + (
         f", {forces.split('/', 1)[1]} cavitation" if "/" in forces else "")
     line1 = f"{equations}, {forces}"
-    line2 = f"{trajectory.status}: {trajectory.reason}"
+    line2 = f"{trajectory.status}: {trajectory.message}"
     g = trajectory.groups
     names = {"s": "s", "upsilon": "Upsilon", "mu": "mu", "delta_over_a": "delta/a"}
     groups = ", ".join(f"{names[k]} = {g[k]:.3g}" for k in names if k in g)

@@ -10,23 +10,45 @@ import numpy as np
 from dynamics.app.figures import trajectory_figure
 from dynamics.app.folder import OutputFolder
 from dynamics.app.regime import classify
-from dynamics.simulate import Trajectory
+from dynamics.simulation import Trajectory
 from lubrication.files import save_figure, write_json, write_text
 
-__all__ = ["CSV_COLUMNS", "summary", "trajectory_csv", "write_outputs"]
+__all__ = ["CSV_COLUMNS", "MAX_ROWS", "summary", "thinning", "trajectory_csv", "write_outputs"]
 
 CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "phi", "omega_a", "omega_b")
 
 
-def trajectory_csv(trajectory: Trajectory) -> str:
+#: Largest number of rows trajectory.csv holds; a longer run is thinned to every k-th integrator step
+#: (event rows and the last row always kept), and summary.json says so. Rows at a requested
+#: output interval are never thinned.
+MAX_ROWS = 200_000
+
+
+def thinning(trajectory: Trajectory, max_rows: int = MAX_ROWS) -> np.ndarray:
+    """Indices of the rows to write: all of them, or every k-th step plus every event row and the last."""
+    n = trajectory.t.size
+    if n <= max_rows or np.any([row.startswith("sample") for row in trajectory.rows[:2]]):
+        return np.arange(n)
+    every = int(np.ceil(n / max_rows))
+    marked = np.array(["event" in row or "end" in row or "start" in row for row in trajectory.rows])
+    keep = (np.arange(n) % every == 0) | marked
+    return np.nonzero(keep)[0]
+
+
+def trajectory_csv(trajectory: Trajectory, rows: np.ndarray | None = None) -> str:
     """CSV text with a header row; SI units (or scaled ones for a dimensionless run).
 
-    The contract's columns come first, then any a model adds (the contact phase and forces).
+    The contract's columns come first, then any a model adds (the contact phase and
+    forces), then ``row``: what the row is ("step", "sample", "event:touch", "end", ...).
+    ``rows`` selects rows (:func:`thinning`); all by default.
     """
     names = list(CSV_COLUMNS) + [k for k in trajectory.columns if k not in CSV_COLUMNS]
-    data = np.column_stack([trajectory.columns[name] for name in names])
+    rows = np.arange(trajectory.t.size) if rows is None else rows
     buf = io.StringIO()
-    np.savetxt(buf, data, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+    buf.write(",".join([*names, "row"]) + "\n")
+    data = np.column_stack([trajectory.columns[name][rows] for name in names])
+    for values, label in zip(data, trajectory.rows[rows]):
+        buf.write(",".join(f"{x:.17g}" for x in values) + f",{label}\n")
     return buf.getvalue()
 
 
@@ -39,8 +61,9 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "model": trajectory.equations,
         "forces": trajectory.forces,
         "method": trajectory.method,
-        "status": "completed" if trajectory.status == "completed" else trajectory.status,
-        "reason": trajectory.reason,
+        "status": trajectory.status,
+        "reason": trajectory.message,
+        "success": trajectory.success,
         "stop_event": trajectory.event,
         "t_end": t_end,
         "mean_speed": float(c["x_b"][-1] / t_end) if t_end > 0 else 0.0,
@@ -48,10 +71,12 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "regime_evidence": evidence,
         "final": {name: float(c[name][-1]) for name in ("kappa", "one_minus_kappa", "phi", "omega_a",
                                                          "omega_b", "x_b")},
+        "events": trajectory.events,
         "wall_time_s": trajectory.wall_time_s,
         "steps": trajectory.steps,
         "nfev": trajectory.nfev,
         "njev": trajectory.njev,
+        "nlu": trajectory.nlu,
         "tau": trajectory.tau,
         "dimensionless": trajectory.dimensionless,
         "units": ("times and rates in tau, eps in delta, x_b in b" if trajectory.dimensionless
@@ -64,21 +89,31 @@ def summary(trajectory: Trajectory, **extra) -> dict:
 
 
 def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",
-                  **extra) -> dict:
+                  plot: bool = True, max_rows: int = MAX_ROWS, **extra) -> dict:
     """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
 
     ``folder`` is an entered :class:`~dynamics.app.folder.OutputFolder` (the
     command line opens it before the run, so that a bad path is refused before
     anything is computed), or a path, which is opened here. The files go into
     its staging folder and are moved into place together; the summary is returned.
+    ``plot`` False leaves out the figure; a run of more than ``max_rows`` steps is
+    thinned in the CSV (:func:`thinning`).
     """
     if not isinstance(folder, OutputFolder):
         with OutputFolder(folder) as opened:
-            return write_outputs(opened, trajectory, resolved_scene=resolved_scene, **extra)
+            return write_outputs(opened, trajectory, resolved_scene=resolved_scene, plot=plot,
+                                 max_rows=max_rows, **extra)
     staging = folder.staging
+    rows = thinning(trajectory, max_rows)
+    if rows.size < trajectory.t.size:
+        extra["rows_thinned"] = {"written": int(rows.size), "steps": int(trajectory.t.size),
+                                 "reason": f"more than {max_rows} rows: every "
+                                           f"{int(np.ceil(trajectory.t.size / max_rows))}-th step written, "
+                                           "with every event row"}
     info = summary(trajectory, **extra)
-    write_text(staging / "trajectory.csv", trajectory_csv(trajectory))
-    save_figure(staging / "trajectory.png", trajectory_figure(trajectory), dpi=110)
+    write_text(staging / "trajectory.csv", trajectory_csv(trajectory, rows))
+    if plot:
+        save_figure(staging / "trajectory.png", trajectory_figure(trajectory), dpi=110)
     if resolved_scene:
         write_text(staging / "scene.resolved.toml", resolved_scene)
     write_json(staging / "summary.json", info)

@@ -9,13 +9,7 @@ from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact
 from dynamics.equations.forces import force_model
 from dynamics.scenes import Scene, SceneError
-from dynamics.simulate import (
-    Trajectory,
-    simulate_contact,
-    simulate_full,
-    simulate_full_contact,
-    simulate_reduced,
-)
+from dynamics.simulation import Trajectory, simulate
 
 __all__ = ["run_scene"]
 
@@ -24,8 +18,11 @@ def _refuse(key: str, why: str) -> SceneError:
     return SceneError(f"{key}: {why}")
 
 
-def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = None) -> Trajectory:
-    """Integrate ``scene`` with the equations and forces it names.
+def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajectory:
+    """Integrate ``scene`` with the equations, forces, contact and limits it names.
+
+    ``progress(t)``, if given, is called now and then with the time reached
+    (s, or tau in a dimensionless scene).
 
     Raises
     ------
@@ -49,28 +46,35 @@ def run_scene(scene: Scene, *, method: str = "LSODA", progress: str | None = Non
         trajectory = run_scene(replace(scene, model=resolved), method=method, progress=progress)
         trajectory.info["model_choice"] = choices
         return trajectory
-    if model.equations == "reduced" and rough is not None:
-        surfaces = ContactParams(rough.kappa_star, rough.psi)
+    contact = None
+    if rough is not None:
+        contact = ContactParams(rough.kappa_star, rough.psi)
         if rough.roughness_amplitude > 0:
             # the correlation is a distance rolled: metres, or units of b in a dimensionless scene
             a, b = ((scene.apparatus.a, scene.apparatus.b) if scene.apparatus is not None
                     else (1.0 / (1.0 + scene.groups.delta_over_a), 1.0))
-            surfaces = RoughContact.from_rolled_length(surfaces, rough.roughness_amplitude,
-                                                       rough.roughness_correlation, a, b, rough.seed)
-        return simulate_contact(scene.groups.reduced_params, surfaces, scene.initial, scene.t_end_tau,
-                                apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
-                                progress=progress)
-    if model.equations == "reduced":
-        return simulate_reduced(scene.groups.reduced_params, scene.initial, scene.t_end_tau,
-                                apparatus=scene.apparatus, rtol=scene.run.rtol, method=method,
-                                progress=progress)
-    options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
-    if cavitation is not None:
-        options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
-    forces = force_model(model.forces, **options)
-    if rough is not None:
-        return simulate_full_contact(scene.apparatus, forces, ContactParams(rough.kappa_star, rough.psi),
-                                     scene.initial, scene.run.t_end, rtol=scene.run.rtol, method=method,
-                                     progress=progress)
-    return simulate_full(scene.apparatus, forces, scene.initial, scene.run.t_end, rtol=scene.run.rtol,
-                         method=method, progress=progress)
+            contact = RoughContact.from_rolled_length(contact, rough.roughness_amplitude,
+                                                      rough.roughness_correlation, a, b, rough.seed)
+    system = scene.apparatus if scene.apparatus is not None else scene.groups.reduced_params
+    forces = "closed-form"
+    if model.equations == "full":
+        options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
+        if model.ends != "infinite":
+            options.update(ends=model.ends, length_over_a=scene.apparatus.length / scene.apparatus.a)
+        if cavitation is not None:
+            options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
+        try:
+            forces = force_model(model.forces, **options)
+        except ValueError as err:
+            raise _refuse("model.ends", str(err)) from err
+    elif model.ends != "infinite" or model.frame_terms != "paper":
+        key = "model.ends" if model.ends != "infinite" else "model.frame_terms"
+        raise _refuse(key, "the reduced equations (2.11) are per unit length of an infinitely long annulus and "
+                           "drop the O(delta/a) frame terms; this needs model.equations = 'full'")
+    run = scene.run
+    try:
+        return simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
+                        contact=contact, limits=run.limits, method=method, rtol=run.rtol,
+                        output_interval=run.output_interval, progress=progress, frame_terms=model.frame_terms)
+    except ValueError as err:
+        raise SceneError(str(err)) from err

@@ -71,9 +71,9 @@ momentum of (2.4), whereas section 5 lets Omega_a jump to Omega_b
 (see :mod:`dynamics.contact.reduced`). Steady states do not depend on the jump; they
 approach (5.6)-(5.11) at O(delta/a) (checked in the tests).
 
-Units. Every phase is integrated in scaled variables, time in tau and the
-state over its typical size (:func:`dynamics.equations.full.typical_scales`), so that one
-scalar absolute tolerance serves all phases.
+Units. Every phase is integrated in SI, with the absolute tolerance of each
+component rtol times its typical size (:func:`dynamics.equations.full.typical_scales`;
+in contact 1, 1/tau, 1/tau, 1/tau and b for chi, chi', Omega_a, Omega_b, X_b).
 """
 
 from __future__ import annotations
@@ -83,24 +83,23 @@ import math
 import numpy as np
 from scipy.optimize import fsolve
 
-from dynamics.contact.reduced import (
-    FREE,
-    LOCKED,
-    SLIDING,
-    ContactParams,
-    PhaseStart,
-    run_phases,
-)
+from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
+from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.equations import full
 from dynamics.equations.forces import ForceModel, evaluate
-from dynamics.integrate import Event
+from dynamics.equations.limits import Limits
 from lubrication._jit import jit
 
 __all__ = [
+    "LOCKED_EVENTS",
+    "SLIDING_EVENTS",
+    "contact_events",
+    "contact_jacobian",
     "contact_rates",
+    "contact_rhs",
     "friction_coefficient",
     "impact",
-    "simulate_full_contact",
+    "run_full_contact",
     "slip",
     "steady_full_contact",
 ]
@@ -114,20 +113,21 @@ def friction_coefficient(apparatus, contact: ContactParams) -> float:
 # -- contact forces and accelerations (jitted) -------------------------------------
 
 @jit
-def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat,
-                  profile, sommerfeld, rule, points_per_cell, exact, cavitation):
+def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model):
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).
 
-    ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N.
+    ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N. ``model`` is
+    :attr:`dynamics.equations.forces.ForceModel.data`.
     """
     a, b = p[0], p[1]
     eps = kappa_star * (b - a)
     chi, chi_dot, omega_a, omega_b = y[0], y[1], y[2], y[3]
     ex, ez = math.sin(chi), math.cos(chi)
     cx, cz = ez, -ex
-    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, p[3],
-                                 p[2], kappa_star, omk_star, 0.0, omega_a - chi_dot, omega_b - chi_dot)
-    fluid = full.force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
+    f_eps, f_chi, t_a = evaluate(model, a, b, p[3], p[2], kappa_star, omk_star, 0.0, omega_a - chi_dot,
+                                 omega_b - chi_dot)
+    frame_eps, frame_chi = full.frame_force(p, eps, 0.0, chi_dot)
+    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
     gravity = full.gravity_response(p)
     base = np.empty(4)
     for i in range(4):
@@ -214,176 +214,197 @@ def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: flo
     return v[:2], v[2], v[3], p_n, p_f
 
 
-# -- the hybrid run ----------------------------------------------------------------
+# -- the phases as the hybrid driver runs them ------------------------------------------
 
-class _Scaled:
-    """The full model's phases in scaled variables: time in tau, states over their typical sizes."""
+#: Event components of the contact phases, in order (:func:`contact_events`).
+LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
+SLIDING_EVENTS = ("runaway", "lift", "stick")
 
-    def __init__(self, apparatus, force_model: ForceModel, contact: ContactParams):
-        self.ap, self.contact = apparatus, contact
-        self.p = full.params_array(apparatus)
-        self.model = full.model_arguments(force_model)
-        self.tau = apparatus.tau
-        self.free_scale = full.typical_scales(apparatus)
-        tau = self.tau
-        self.contact_scale = np.array([1.0, 1.0 / tau, 1.0 / tau, 1.0 / tau, apparatus.b])
-        self.contact_args = (contact.kappa_star, contact.one_minus_kappa_star)
-        self.tan_psi_hat = friction_coefficient(apparatus, contact)
-        self.u_star = contact.kappa_star / math.sqrt(contact.one_minus_kappa_star * (1.0 + contact.kappa_star))
-
-    def rates(self, y_si, locked: bool, sigma: float) -> np.ndarray:
-        return contact_rates(y_si, self.p, *self.contact_args, locked, sigma, self.tan_psi_hat,
-                             *self.model)
-
-    def free_fun(self, t, y):
-        scale = self.free_scale
-        return self.tau * full.rhs(t * self.tau, y * scale, self.p, *self.model) / scale
-
-    def free_jac(self, t, y):
-        scale = self.free_scale
-        jac = full.jacobian(t * self.tau, y * scale, self.p, *self.model, scale)
-        return self.tau * jac * scale[None, :] / scale[:, None]
-
-    def contact_fun(self, locked: bool, sigma: float):
-        scale, tau, b = self.contact_scale, self.tau, self.ap.b
-
-        def fun(t, y):
-            y_si = y * scale
-            r = self.rates(y_si, locked, sigma)
-            return tau * np.array([y_si[1], r[0], r[1], r[2], b * y_si[3]]) / scale
-
-        return fun
+# args of the contact phases: (p, model, typical scales, numbers), the same types as the free phase's
+# (dynamics.equations.full.run_args), so that one compiled integrator serves both; the numbers are
+# the runaway's limit and origin of X_b, then kappa*, 1 - kappa*, locked, sigma and tan(psi_hat)
+_XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)
 
 
-def _central_jacobian(fun, t, y):
-    """d(fun)/dy by central differences, steps eps^(1/3) max(|y_j|, 1) of an O(1) scaled state."""
-    jac = np.empty((y.size, y.size))
-    for j in range(y.size):
-        h = 6.0554544523933395e-06 * max(abs(y[j]), 1.0)
-        yp, ym = y.copy(), y.copy()
-        yp[j] += h
-        ym[j] -= h
-        jac[:, j] = (fun(t, yp) - fun(t, ym)) / (2.0 * h)
+@jit
+def contact_rhs(t, y, args):
+    """d/dt (chi, chi', Omega_a, Omega_b, X_b) in contact (SI); ``args`` from :func:`_Run.contact_args`."""
+    p, model, c = args[0], args[1], args[3]
+    r = contact_rates(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)
+    out = np.empty(5)
+    out[0] = y[1]
+    out[1] = r[0]
+    out[2] = r[1]
+    out[3] = r[2]
+    out[4] = p[1] * y[3]
+    return out
+
+
+@jit
+def contact_jacobian(t, y, args):
+    """d(contact_rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j)."""
+    typical = args[2]
+    n = y.size
+    jac = np.empty((n, n))
+    yp = y.copy()
+    for j in range(n):
+        h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])
+        yp[j] = y[j] + h
+        up = contact_rhs(t, yp, args)
+        yp[j] = y[j] - h
+        down = contact_rhs(t, yp, args)
+        yp[j] = y[j]
+        for i in range(n):
+            jac[i, j] = (up[i] - down[i]) / (2.0 * h)
     return jac
 
 
-def _enter_contact(sc: _Scaled, y_si, sigma_hint: float = 0.0) -> PhaseStart:
-    """Phase on touching (after the impact) or at a switch, for a contact state ``y_si`` (SI).
+@jit
+def contact_events(t, y, args):
+    """Locked: :data:`LOCKED_EVENTS`; sliding: :data:`SLIDING_EVENTS` (the fourth component is unused).
 
-    Locked when the locking reaction is inside the friction cone, free when N < 0,
-    else sliding with sigma = sgn(slip), or -sgn(F_lock) at zero slip.
+    The runaway; lift-off as N falls through 0; locked, the friction bound
+    |F| = tan(psi_hat) N on either side; sliding, the slip reaching 0.
     """
-    scaled = y_si / sc.contact_scale
-    s = slip(sc.ap, sc.contact.kappa_star, y_si)
-    lock = sc.rates(y_si, True, 0.0)
-    n_lock, f_lock = lock[3], lock[4]
-    stuck = abs(s) <= 1e-12 * sc.ap.b / sc.tau
-    if stuck and n_lock > 0.0 and abs(f_lock) < sc.tan_psi_hat * n_lock:
-        return PhaseStart(LOCKED, scaled)
-    sigma = math.copysign(1.0, s) if not stuck else (sigma_hint or -math.copysign(1.0, f_lock))
-    if sc.rates(y_si, False, sigma)[3] <= 0.0 and n_lock <= 0.0:
-        return PhaseStart(FREE, _free_state(sc.ap, sc.contact, y_si) / sc.free_scale)
-    return PhaseStart(SLIDING, scaled, sigma)
-
-
-def _touch(sc: _Scaled, y_free_si, phi: float) -> PhaseStart:
-    """The impact on touching, then :func:`_enter_contact`."""
-    chi = phi - sc.ap.alpha
-    velocity, omega_a, omega_b, _, _ = impact(sc.ap, sc.contact, chi, y_free_si[2:4], y_free_si[4], y_free_si[5])
-    eps = sc.contact.kappa_star * sc.ap.delta
-    chi_dot = (math.cos(chi) * velocity[0] - math.sin(chi) * velocity[1]) / eps
-    return _enter_contact(sc, np.array([chi, chi_dot, omega_a, omega_b, y_free_si[6]]))
-
-
-def _setup(sc: _Scaled, phase: str, sigma: float, extra_events) -> tuple:
-    if phase == FREE:
-        touch = Event("touch", lambda t, y: math.hypot(y[0], y[1]) - sc.u_star, 1.0,
-                      lambda t: f"contact at t = {t * sc.tau:.6g} s")
-        return sc.free_fun, sc.free_jac, (touch, *extra_events(FREE))
-    locked = phase == LOCKED
-    fun = sc.contact_fun(locked, sigma)
-    mu_f = sc.tan_psi_hat
-
-    def reaction(y):
-        return sc.rates(y * sc.contact_scale, locked, sigma)
-
-    lift = Event("lift", lambda t, y: reaction(y)[3], -1.0, lambda t: f"lift-off at t = {t * sc.tau:.6g} s")
-    events = [lift, *extra_events(phase)]
-    if locked:
-        for side in (1.0, -1.0):
-            events.append(Event("slip", lambda t, y, side=side: mu_f * reaction(y)[3] - side * reaction(y)[4],
-                                -1.0, lambda t: f"friction bound reached at t = {t * sc.tau:.6g} s"))
-    elif mu_f > 0.0:
-        events.append(Event("stick", lambda t, y: sigma * slip(sc.ap, sc.contact.kappa_star, y * sc.contact_scale),
-                            -1.0, lambda t: f"slip stops at t = {t * sc.tau:.6g} s"))
-    return fun, (lambda t, y: _central_jacobian(fun, t, y)), tuple(events)
-
-
-def _transition(sc: _Scaled, phase, sigma, reason, end, phi) -> PhaseStart:
-    if phase == FREE:
-        return _touch(sc, end * sc.free_scale, phi)
-    y_si = end * sc.contact_scale
-    if reason == "lift":
-        return PhaseStart(FREE, _free_state(sc.ap, sc.contact, y_si) / sc.free_scale)
-    if reason == "stick":
-        eps = sc.contact.kappa_star * sc.ap.delta
-        y_si[2] = ((sc.ap.a + eps) * y_si[3] - eps * y_si[1]) / sc.ap.a  # slip = 0 exactly
-        return _enter_contact(sc, y_si, -sigma)
-    # the friction bound is reached: slide from zero slip, the way the friction no longer prevents
-    return PhaseStart(SLIDING, end.copy(), -math.copysign(1.0, sc.rates(y_si, True, 0.0)[4]))
-
-
-def _columns(sc: _Scaled, phase, sigma, y, t, phi_start) -> dict:
-    ap, n = sc.ap, t.size
-    if phase == FREE:
-        obs = full.observables(ap, y * sc.free_scale[:, None])
-        if n:
-            turns = 2.0 * math.pi * round((phi_start - obs["phi"][0]) / (2.0 * math.pi))
-            obs["phi"], obs["chi"] = obs["phi"] + turns, obs["chi"] + turns
-        zeros = np.zeros(n)
-        return {**obs, "c_eps": zeros, "c_chi": zeros}
-    y_si = y * sc.contact_scale[:, None]
-    forces = np.array([sc.rates(y_si[:, i], phase == LOCKED, sigma)[3:] for i in range(n)]).reshape(n, 2)
-    weight = ap.m_a_reduced * ap.g
-    kappa = sc.contact.kappa_star
-    return {"kappa": np.full(n, kappa), "one_minus_kappa": np.full(n, sc.contact.one_minus_kappa_star),
-            "eps": np.full(n, kappa * ap.delta), "chi": y_si[0], "phi": y_si[0] + ap.alpha,
-            "omega_a": y_si[2], "omega_b": y_si[3], "x_b": y_si[4],
-            "c_eps": forces[:, 0] / weight, "c_chi": -forces[:, 1] / (ap.delta_over_a * weight)}
-
-
-def simulate_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, y0_free: np.ndarray,
-                          t_end: float, *, rtol: float = 1e-8, method: str = "LSODA", extra_events=None,
-                          max_steps: int = 2_000_000, max_switches: int = 10_000,
-                          progress: str | None = None) -> dict:
-    """Integrate the full model with rough contact from the free state ``y0_free`` over ``t_end`` seconds.
-
-    ``y0_free`` is a state of :mod:`dynamics.equations.full` (SI) with kappa <= kappa*;
-    at kappa* the run starts as on touching. ``extra_events(phase)`` returns
-    further terminal events of a phase (scaled state, time in tau). Returns the
-    fields of :class:`dynamics.contact.reduced.ContactTrajectory` as
-    :func:`dynamics.contact.reduced.run_phases` does, times in seconds.
-    """
-    sc = _Scaled(apparatus, force_model, contact)
-    extra_events = extra_events or (lambda phase: ())
-    kappa0 = math.hypot(y0_free[0], y0_free[1]) / math.hypot(1.0, math.hypot(y0_free[0], y0_free[1]))
-    phi0 = math.atan2(y0_free[0], y0_free[1]) + apparatus.alpha
-    if kappa0 > contact.kappa_star:
-        msg = f"the initial kappa = {kappa0:.12g} must be at most kappa_star = {contact.kappa_star:.12g}"
-        raise ValueError(msg)
-    if kappa0 >= contact.kappa_star * (1.0 - 1e-14):
-        start = _touch(sc, y0_free, phi0)
+    p, model, c = args[0], args[1], args[3]
+    r = contact_rates(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)
+    n_force, f_force = r[3], r[4]
+    g = np.empty(4)
+    g[0] = c[_XB_LIMIT] - abs(y[4] - c[_XB0])
+    g[1] = n_force
+    if c[_LOCKED] > 0.0:
+        g[2] = c[_MU_F] * n_force - f_force
+        g[3] = c[_MU_F] * n_force + f_force
     else:
-        start = PhaseStart(FREE, y0_free / sc.free_scale)
-    fields = run_phases(
-        start, lambda phase, sigma, _: _setup(sc, phase, sigma, extra_events),
-        lambda phase, sigma, y, t, phi: _columns(sc, phase, sigma, y, t, phi),
-        lambda phase, sigma, reason, end, phi: _transition(sc, phase, sigma, reason, end, phi),
-        t_end / sc.tau, phi0, rtol=rtol, atol=rtol, method=method, max_steps=max_steps,
-        max_switches=max_switches, progress=progress)
-    fields["t_tau"] = fields["t"]
-    fields["t"] = fields["t"] * sc.tau
-    fields["switches"] = tuple(sw._replace(t=sw.t * sc.tau) for sw in fields["switches"])
+        eps = c[_KSTAR] * (p[1] - p[0])
+        g[2] = c[_SIGMA] * (eps * (y[1] - y[3]) + p[0] * (y[2] - y[3]))
+        g[3] = 1.0
+    return g
+
+
+class _Run:
+    """What the phases of one full-model contact run share."""
+
+    def __init__(self, apparatus, force_model: ForceModel, contact: ContactParams, limits: Limits, rtol: float,
+                 frame_terms: str = "paper"):
+        self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
+        self.p = full.params_array(apparatus, frame_terms)
+        self.model = full.model_arguments(force_model)
+        self.tan_psi_hat = friction_coefficient(apparatus, contact)
+        self.free_args = full.run_args(apparatus, force_model, gap_floor=limits.gap_floor,
+                                       max_reynolds=limits.reynolds, max_turns=limits.max_turns,
+                                       kappa_star=contact.kappa_star, frame_terms=frame_terms)
+        tau = apparatus.tau
+        self.contact_typical = np.array([1.0, 1.0 / tau, 1.0 / tau, 1.0 / tau, apparatus.b])
+        self.runaway = np.array([2.0 * math.pi * apparatus.b * limits.max_turns, 0.0])
+
+    def rates(self, y, locked: bool, sigma: float) -> np.ndarray:
+        return contact_rates(np.asarray(y, float), self.p, self.contact.kappa_star, self.contact.one_minus_kappa_star,
+                             locked, sigma, self.tan_psi_hat, self.model)
+
+    def contact_args(self, locked: bool, sigma: float) -> tuple:
+        numbers = np.array([*self.runaway, self.contact.kappa_star, self.contact.one_minus_kappa_star,
+                            float(locked), sigma, self.tan_psi_hat])
+        return (self.p, self.model, self.contact_typical, numbers)
+
+    def free(self, y) -> Phase:
+        stops = int(self.limits.stops)
+        return Phase(FREE, full.rhs, full.jacobian, full.events, self.free_args, np.asarray(y, float),
+                     full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * self.free_args[2])
+
+    def locked(self, y) -> Phase:
+        return Phase(LOCKED, contact_rhs, contact_jacobian, contact_events, self.contact_args(True, 0.0),
+                     np.asarray(y, float), LOCKED_EVENTS, (1, 1, 1, 1), (-1, -1, -1, -1),
+                     self.rtol * self.contact_typical)
+
+    def sliding(self, y, sigma: float) -> Phase:
+        stick = int(self.tan_psi_hat > 0.0)
+        return Phase(SLIDING, contact_rhs, contact_jacobian, contact_events, self.contact_args(False, sigma),
+                     np.asarray(y, float), (*SLIDING_EVENTS, ""), (1, 1, stick, 0), (-1, -1, -1, 0),
+                     self.rtol * self.contact_typical, sigma=sigma)
+
+    def enter_contact(self, y, sigma_hint: float = 0.0) -> Phase:
+        """Phase on touching (after the impact) or at a switch, for a contact state ``y`` (SI).
+
+        Locked when the locking reaction is inside the friction cone, free when N < 0,
+        else sliding with sigma = sgn(slip), or -sgn(F_lock) at zero slip.
+        """
+        s = slip(self.ap, self.contact.kappa_star, y)
+        lock = self.rates(y, True, 0.0)
+        n_lock, f_lock = lock[3], lock[4]
+        stuck = abs(s) <= 1e-12 * self.ap.b / self.ap.tau
+        if stuck and n_lock > 0.0 and abs(f_lock) < self.tan_psi_hat * n_lock:
+            return self.locked(y)
+        sigma = math.copysign(1.0, s) if not stuck else (sigma_hint or -math.copysign(1.0, f_lock))
+        if self.rates(y, False, sigma)[3] <= 0.0 and n_lock <= 0.0:
+            return self.free(_free_state(self.ap, self.contact, y))
+        return self.sliding(y, sigma)
+
+    def touch(self, y_free, phi: float) -> Phase:
+        """The impact on touching, then :meth:`enter_contact`."""
+        chi = phi - self.ap.alpha
+        velocity, omega_a, omega_b, _, _ = impact(self.ap, self.contact, chi, y_free[2:4], y_free[4], y_free[5])
+        eps = self.contact.kappa_star * self.ap.delta
+        chi_dot = (math.cos(chi) * velocity[0] - math.sin(chi) * velocity[1]) / eps
+        return self.enter_contact(np.array([chi, chi_dot, omega_a, omega_b, y_free[6]]))
+
+    def transition(self, phase: Phase, reason: str, end, phi: float) -> Phase:
+        if phase.name == FREE:
+            return self.touch(end, phi)
+        y = np.array(end, dtype=float)
+        if reason == "lift":
+            return self.free(_free_state(self.ap, self.contact, y))
+        if reason == "stick":
+            eps = self.contact.kappa_star * self.ap.delta
+            y[2] = ((self.ap.a + eps) * y[3] - eps * y[1]) / self.ap.a  # slip = 0 exactly
+            return self.enter_contact(y, -phase.sigma)
+        # the friction bound is reached: slide from zero slip, the way the friction no longer prevents
+        return self.sliding(y, -math.copysign(1.0, self.rates(y, True, 0.0)[4]))
+
+    def columns(self, phase: Phase, t, y, kind) -> dict:
+        """Scaled columns of one phase's rows (t in tau, rates in 1/tau, X_b in b)."""
+        ap, n, tau = self.ap, t.size, self.ap.tau
+        if phase.name == FREE:
+            obs = full.observables(ap, y, phase.extra["phi0"])
+            zeros = np.zeros(n)
+            return {"kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
+                    "kappa_dot": obs["kappa_dot"] * tau, "phi_dot": obs["phi_dot"] * tau,
+                    "omega_a": obs["omega_a"] * tau, "omega_b": obs["omega_b"] * tau, "x_b": obs["x_b"] / ap.b,
+                    "c_eps": zeros, "c_chi": zeros}
+        forces = np.array([self.rates(y[:, i], phase.name == LOCKED, phase.sigma)[3:] for i in range(n)]).reshape(n, 2)
+        weight = ap.m_a_reduced * ap.g
+        return {"kappa": np.full(n, self.contact.kappa_star),
+                "one_minus_kappa": np.full(n, self.contact.one_minus_kappa_star), "phi": y[0] + ap.alpha,
+                "kappa_dot": np.zeros(n), "phi_dot": y[1] * tau,
+                "omega_a": y[2] * tau, "omega_b": y[3] * tau, "x_b": y[4] / ap.b,
+                "c_eps": forces[:, 0] / weight, "c_chi": -forces[:, 1] / (ap.delta_over_a * weight)}
+
+
+def run_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, initial, t_end: float, *,
+                     limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None,
+                     max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
+                     frame_terms: str = "paper") -> dict:
+    """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
+
+    Returns the fields of :func:`dynamics.contact.hybrid.run_phases` with times in
+    tau and the columns scaled (rates in 1/tau, X_b in b), as
+    :mod:`dynamics.simulation` expects; use :func:`dynamics.simulation.simulate` for a
+    :class:`~dynamics.simulation.Trajectory`. At kappa = kappa* the run starts as
+    on touching.
+    """
+    run = _Run(apparatus, force_model, contact, limits, rtol, frame_terms)
+    y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
+                            initial.omega_a, initial.omega_b)
+    if initial.kappa >= contact.kappa_star * (1.0 - 1e-14):
+        start = run.touch(y0, initial.phi)
+    else:
+        start = run.free(y0)
+    tau = apparatus.tau
+    fields = run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
+                        run.columns, t_end, phi0=initial.phi, method=method, rtol=rtol, t_eval=t_eval,
+                        max_steps=max_steps, max_switches=max_switches, progress=progress)
+    fields["t"] = fields["t"] / tau
+    fields["switches"] = tuple(sw._replace(t=sw.t / tau) for sw in fields["switches"])
     return fields
 
 
@@ -407,7 +428,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
     if locked:
         def residual(x):
             y = np.array([x[0], 0.0, arm * x[1] / (a * tau), x[1] / tau])
-            r = contact_rates(y, p, *args, True, 0.0, tan_psi_hat, *model)
+            r = contact_rates(y, p, *args, True, 0.0, tan_psi_hat, model)
             return [r[0] * tau * tau, r[2] * tau * tau]
 
         chi, omega_b = fsolve(residual, [guess[0], guess[2] * tau], xtol=1e-12)
@@ -415,7 +436,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
 
     def residual(x):
         y = np.array([x[0], 0.0, x[1] / tau, x[2] / tau])
-        r = contact_rates(y, p, *args, False, sigma, tan_psi_hat, *model)
+        r = contact_rates(y, p, *args, False, sigma, tan_psi_hat, model)
         return [r[0] * tau * tau, r[1] * tau * tau, r[2] * tau * tau]
 
     chi, omega_a, omega_b = fsolve(residual, guess * np.array([1.0, tau, tau]), xtol=1e-12)

@@ -121,49 +121,40 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 
 from dynamics.equations import reduced
-from dynamics.equations.limits import MAX_TURNS, runaway_event
+from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
+from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
     ReducedParams,
-    ReducedTrajectory,
     initial_state,
-    reduced_jacobian,
-    reduced_rhs,
-    stretched_to_kappa,
 )
-from dynamics.integrate import Event, integrate
 from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
 
 __all__ = [
     "FREE",
     "LOCKED",
+    "LOCKED_EVENTS",
     "SLIDING",
+    "SLIDING_EVENTS",
     "ContactParams",
-    "ContactTrajectory",
-    "PhaseStart",
-    "Switch",
-    "free_columns",
+    "locked_events",
     "locked_friction",
     "locked_jacobian",
     "locked_rhs",
-    "run_phases",
-    "simulate_contact",
+    "on_circle",
+    "phase_args",
+    "run_contact",
+    "sliding_events",
     "sliding_jacobian",
     "sliding_rhs",
+    "tangential_rate",
 ]
 
 FREE, SLIDING, LOCKED = "free", "sliding", "locked"
-_SWITCHES = ("touch", "lift", "stick", "slip")  # the events that end a phase, not the run
-
-# A hybrid run that switched this often is caught in a pathological cycle; it
-# stops with that reason. Figure 7's run switches once, runs near the onset of
-# sliding (stick-slip while rocking) some 20 times.
-MAX_SWITCHES = 10_000
 
 
 @dataclass(frozen=True)
@@ -208,40 +199,6 @@ class ContactParams:
         return math.tan(self.psi)
 
 
-class Switch(NamedTuple):
-    """A change of phase at time ``t`` (units of tau)."""
-
-    t: float
-    old: str
-    new: str
-
-
-@dataclass(frozen=True, kw_only=True)
-class ContactTrajectory(ReducedTrajectory):
-    """A hybrid solution: the columns of :class:`dynamics.equations.reduced.ReducedTrajectory` and more.
-
-    Every switching time appears twice: the state just before the switch
-    (labelled with the old phase) and just after (the new phase), so that the
-    jump of Omega_a on locking is resolved; ``t`` is non-decreasing. In contact
-    kappa = kappa* exactly; ``nfev``, ``njev``, ``steps`` are totals over all
-    phases, and ``stop_reason`` may also be ``"max_switches"``.
-
-    Attributes
-    ----------
-    phase : ndarray of str, shape (n,)
-        "free", "sliding" or "locked".
-    c_eps, c_chi : ndarray, shape (n,)
-        Scaled reaction C_e = -cos(phi) (>= 0) and friction C_x of (5.2);
-        zero when free.
-    switches : tuple of Switch
-    """
-
-    phase: np.ndarray
-    c_eps: np.ndarray
-    c_chi: np.ndarray
-    switches: tuple[Switch, ...]
-
-
 # -- the contact phases -------------------------------------------------------------
 
 def locked_friction(params: ReducedParams, kappa_star: float, phi):
@@ -251,7 +208,7 @@ def locked_friction(params: ReducedParams, kappa_star: float, phi):
 
 
 @jit(inline="always")
-def _on_circle(phi, omega_a, omega_b, x_b, r_star):
+def on_circle(phi, omega_a, omega_b, x_b, r_star):
     """The state of :mod:`dynamics.equations.reduced` at kappa = kappa*, for its right-hand side."""
     z = np.empty(5)
     z[0] = r_star * math.sin(phi)
@@ -263,7 +220,7 @@ def _on_circle(phi, omega_a, omega_b, x_b, r_star):
 
 
 @jit(inline="always")
-def _tangential(z, f, r_star):
+def tangential_rate(z, f, r_star):
     """phi' from the stretched rates f = (xi', eta', ...) at z: the (2.11b) part, radial part dropped."""
     return (z[1] * f[0] - z[0] * f[1]) / (r_star * r_star)
 
@@ -300,12 +257,12 @@ def sliding_rhs(t, y, args):
     of the phase (0 when psi = 0).
     """
     r_star = args[_R_STAR]
-    z = _on_circle(y[0], y[1], y[2], y[3], r_star)
+    z = on_circle(y[0], y[1], y[2], y[3], r_star)
     f = reduced.rhs(t, z, args)
     c_x = args[_SIGMA] * args[_TAN_PSI] * math.cos(y[0])
     ups, mu_ = args[1], args[2]
     out = np.empty(4)
-    out[0] = _tangential(z, f, r_star)
+    out[0] = tangential_rate(z, f, r_star)
     out[1] = f[2] - 2.0 * c_x / ups
     out[2] = f[3] + c_x / (mu_ * ups)
     out[3] = f[4]
@@ -316,7 +273,7 @@ def sliding_rhs(t, y, args):
 def sliding_jacobian(t, y, args):
     """Analytic Jacobian of :func:`sliding_rhs` (chain rule through the reduced Jacobian)."""
     r_star = args[_R_STAR]
-    z = _on_circle(y[0], y[1], y[2], y[3], r_star)
+    z = on_circle(y[0], y[1], y[2], y[3], r_star)
     f = reduced.rhs(t, z, args)
     jac5 = reduced.jacobian(t, z, args)
     dz = _circle_tangent(z, 4, np.array([1, 2, 3]))
@@ -337,11 +294,11 @@ def locked_rhs(t, y, args):
     of the reduced right-hand side, which no contact force enters.
     """
     r_star = args[_R_STAR]
-    z = _on_circle(y[0], y[1], y[1], y[2], r_star)
+    z = on_circle(y[0], y[1], y[1], y[2], r_star)
     f = reduced.rhs(t, z, args)
     mu_ = args[2]
     out = np.empty(3)
-    out[0] = _tangential(z, f, r_star)
+    out[0] = tangential_rate(z, f, r_star)
     out[1] = (mu_ * f[3] + 0.5 * f[2]) / (mu_ + 0.5)
     out[2] = f[4]
     return out
@@ -351,7 +308,7 @@ def locked_rhs(t, y, args):
 def locked_jacobian(t, y, args):
     """Analytic Jacobian of :func:`locked_rhs`."""
     r_star = args[_R_STAR]
-    z = _on_circle(y[0], y[1], y[1], y[2], r_star)
+    z = on_circle(y[0], y[1], y[1], y[2], r_star)
     f = reduced.rhs(t, z, args)
     jac5 = reduced.jacobian(t, z, args)
     dz = _circle_tangent(z, 3, np.array([1, 1, 2]))
@@ -363,273 +320,153 @@ def locked_jacobian(t, y, args):
     return jac
 
 
-def phase_args(params: ReducedParams, contact: ContactParams, sigma: float = 0.0) -> tuple:
+def phase_args(params: ReducedParams, contact: ContactParams, sigma: float = 0.0) -> np.ndarray:
     """The compiled phases' args: (s, Upsilon, mu_, r*, tan(psi), sigma, kappa*)."""
-    return (*params.args, contact.r_star, contact.tan_psi, float(sigma), contact.kappa_star)
+    return np.array([*params.args, contact.r_star, contact.tan_psi, sigma, contact.kappa_star], dtype=float)
 
 
-# -- the hybrid driver --------------------------------------------------------------
+# -- the phases as the hybrid driver runs them ------------------------------------------
 
-class PhaseStart(NamedTuple):
-    """Where a phase of :func:`run_phases` starts.
+#: Event components of the contact phases, in order (:func:`sliding_events`, :func:`locked_events`).
+SLIDING_EVENTS = ("runaway", "lift", "stick")
+LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
+# args of the contact phases after phase_args: the runaway's limit and origin of X_b
+_XB_LIMIT, _XB0 = 7, 8
 
-    Attributes
-    ----------
-    phase : str
-        "free", "sliding" or "locked".
-    y : ndarray
-        Initial state of the phase.
-    sigma : float
-        Sign of the sliding friction, 0 when not sliding.
-    on_constraint : bool
-        The phase starts where its guard is zero; handed to ``setup``.
-    switch : bool
-        Record the change as a :class:`Switch`; False restarts the same phase
-        without one.
+
+@jit(inline="always")
+def _locked_friction(args, phi):
+    """(5.4) from the phase's args."""
+    s, mu_ = args[0], args[2]
+    return -(2.0 * s + (1.0 - 2.0 * mu_) * args[_KAPPA_STAR] * math.sin(phi)) / (2.0 * (1.0 + 2.0 * mu_))
+
+
+@jit
+def sliding_events(t, y, args):
+    """:data:`SLIDING_EVENTS`: the runaway, lift-off (cos(phi) rising through 0), stick (D reaching 0)."""
+    g = np.empty(3)
+    g[0] = args[_XB_LIMIT] - abs(y[3] - args[_XB0])
+    g[1] = math.cos(y[0])
+    g[2] = args[_SIGMA] * (y[2] - y[1])
+    return g
+
+
+@jit
+def locked_events(t, y, args):
+    """:data:`LOCKED_EVENTS`: the runaway, lift-off, and the friction bound (5.5) on either side."""
+    bound = -math.cos(y[0]) * args[_TAN_PSI]
+    c_lock = _locked_friction(args, y[0])
+    g = np.empty(4)
+    g[0] = args[_XB_LIMIT] - abs(y[2] - args[_XB0])
+    g[1] = math.cos(y[0])
+    g[2] = bound - c_lock
+    g[3] = bound + c_lock
+    return g
+
+
+class _Run:
+    """What the phases of one reduced contact run share: groups, contact, limits, tolerances."""
+
+    def __init__(self, params: ReducedParams, contact: ContactParams, limits: Limits, rtol: float, x_b0: float):
+        self.params, self.contact, self.limits = params, contact, limits
+        self.atol = rtol  # every component is O(1) in these units
+        self.x_b_limit = 2.0 * math.pi * limits.max_turns
+        self.free_args = reduced.run_args(params, gap_floor=limits.gap_floor, x_b_limit=self.x_b_limit,
+                                          x_b0=x_b0, r_star=contact.r_star)
+        self.x_b0 = x_b0
+
+    def args(self, sigma: float = 0.0) -> np.ndarray:
+        return np.append(phase_args(self.params, self.contact, sigma), [self.x_b_limit, self.x_b0])
+
+    def free(self, y) -> Phase:
+        # the touch ends the phase; the gap floor cannot be reached below kappa*; turns are recorded
+        terminal = (int(self.limits.stops), 0, 1, 0, 1)
+        return Phase(FREE, reduced.rhs, reduced.jacobian, reduced.events, self.free_args, np.asarray(y, float),
+                     reduced.EVENT_NAMES, terminal, (-1, -1, -1, 0, 1), np.full(5, self.atol))
+
+    def sliding(self, y, sigma: float) -> Phase:
+        stick = int(self.contact.tan_psi > 0.0)  # with psi = 0 there is no friction and D = 0 is no event
+        return Phase(SLIDING, sliding_rhs, sliding_jacobian, sliding_events, self.args(sigma),
+                     np.asarray(y, float), SLIDING_EVENTS, (1, 1, stick), (-1, 1, -1), np.full(4, self.atol),
+                     sigma=sigma)
+
+    def locked(self, y) -> Phase:
+        return Phase(LOCKED, locked_rhs, locked_jacobian, locked_events, self.args(), np.asarray(y, float),
+                     LOCKED_EVENTS, (1, 1, 1, 1), (-1, 1, -1, -1), np.full(3, self.atol))
+
+    def enter_contact(self, phi, omega_a, omega_b, x_b) -> Phase:
+        """Phase and state on touching, or on leaving a phase at D = 0 or at the friction bound.
+
+        Locked if (5.5) holds (Omega_a jumps to Omega_b, the paper's rule); else
+        sliding with sigma = sgn(D), or -sgn(C_lock) when D = 0 (module docstring).
+        """
+        contact = self.contact
+        bound = -math.cos(phi) * contact.tan_psi
+        c_lock = locked_friction(self.params, contact.kappa_star, phi)
+        if abs(c_lock) < bound:
+            return self.locked([phi, omega_b, x_b])
+        if contact.tan_psi == 0.0:
+            sigma = 0.0
+        elif omega_b != omega_a:
+            sigma = math.copysign(1.0, omega_b - omega_a)
+        else:
+            sigma = -math.copysign(1.0, c_lock)
+        return self.sliding([phi, omega_a, omega_b, x_b], sigma)
+
+    def transition(self, phase: Phase, reason: str, end, phi: float) -> Phase:
+        """The phase after the switch ``reason`` from ``phase`` at the final state ``end``, angle ``phi``."""
+        if reason == "lift":  # a locked state carries one rate, (phi, Omega, X_b)
+            rates = (end[1], end[1], end[2]) if phase.name == LOCKED else (end[1], end[2], end[3])
+            return self.free(on_circle(end[0], *rates, self.contact.r_star))
+        if phase.name == FREE:
+            return self.enter_contact(phi, end[2], end[3], end[4])
+        if phase.name == SLIDING:  # D = 0: lock if (5.5) holds, else slide the other way
+            return self.enter_contact(end[0], end[2], end[2], end[3])
+        # the friction bound is reached: slide, from D = 0
+        return self.sliding([end[0], end[1], end[1], end[2]],
+                            -math.copysign(1.0, locked_friction(self.params, self.contact.kappa_star, end[0])))
+
+    def columns(self, phase: Phase, t, y, kind) -> dict:
+        """Output columns of one phase's rows (state y, shape (n_state, k)), scaled units."""
+        n = t.size
+        if phase.name == FREE:
+            cols = reduced.columns(y, phase.extra["phi0"], phase.args)
+            zeros = np.zeros(n)
+            return {**cols, "c_eps": zeros, "c_chi": zeros}
+        phi = y[0]
+        cos = np.cos(phi)
+        phi_dot = np.array([phase.fun(0.0, np.ascontiguousarray(y[:, i]), phase.args)[0] for i in range(n)])
+        if phase.name == SLIDING:
+            rates = {"omega_a": y[1], "omega_b": y[2], "x_b": y[3], "c_chi": phase.sigma * self.contact.tan_psi * cos}
+        else:
+            rates = {"omega_a": y[1], "omega_b": y[1], "x_b": y[2],
+                     "c_chi": locked_friction(self.params, self.contact.kappa_star, phi)}
+        return {"kappa": np.full(n, self.contact.kappa_star),
+                "one_minus_kappa": np.full(n, self.contact.one_minus_kappa_star), "phi": phi,
+                "kappa_dot": np.zeros(n), "phi_dot": phi_dot.reshape(n), "c_eps": -cos, **rates}
+
+
+def run_contact(params: ReducedParams, contact: ContactParams, t_end: float, kappa0: float, phi0: float,
+                omega_a0: float = 0.0, omega_b0: float = 0.0, x_b0: float = 0.0, *, limits: Limits = Limits(),
+                method: str = "radau", rtol: float = 1e-8, t_eval=None, max_steps: int = 2_000_000,
+                max_switches: int = MAX_SWITCHES, progress=None) -> dict:
+    """The reduced model with rough contact from t = 0 to ``t_end`` (units of tau); the fields of
+    :func:`dynamics.contact.hybrid.run_phases` with columns kappa, 1 - kappa, phi, Omega_a,
+    Omega_b, X_b, C_e, C_x (scaled units).
+
+    At kappa0 = kappa* with cos(phi0) < 0 the run starts in contact (locked or
+    sliding as on touching). Use :func:`dynamics.simulation.simulate` for a
+    :class:`~dynamics.simulation.Trajectory`.
     """
-
-    phase: str
-    y: np.ndarray
-    sigma: float = 0.0
-    on_constraint: bool = False
-    switch: bool = True
-
-
-def run_phases(start: PhaseStart, setup, columns, transition, t_end: float, phi0: float, *,
-               rtol: float, atol: float, method: str, max_steps: int, max_switches: int,
-               progress: str | None) -> dict:
-    """Integrate a hybrid free/sliding/locked system phase by phase, from t = 0 to ``t_end``.
-
-    Each phase is integrated until ``t_end`` or a terminal event. An event
-    named "touch", "lift", "stick" or "slip" ends the phase and ``transition``
-    chooses the next one; any other stop ends the run.
-
-    Parameters
-    ----------
-    start : PhaseStart
-        The first phase.
-    setup : callable
-        ``setup(phase, sigma, on_constraint) -> (fun, jac, events)`` for
-        :func:`dynamics.integrate.integrate`.
-    columns : callable
-        ``columns(phase, sigma, y, t, phi_start) -> dict`` of output columns of
-        one phase's samples (state ``y``, shape (n_state, n)), with a "phi"
-        column continuing from ``phi_start``.
-    transition : callable
-        ``transition(phase, sigma, reason, y_end, phi_end) -> PhaseStart``: the
-        next phase after the event ``reason`` at the final state ``y_end``.
-    t_end : float
-        Final time in units of tau.
-    phi0 : float
-        Initial angle, the ``phi_start`` of the first phase.
-    rtol, atol, method, max_steps, max_switches, progress
-        As for :func:`simulate_contact`.
-
-    Returns
-    -------
-    dict
-        The fields of :class:`ContactTrajectory`: ``t``, ``phase``,
-        ``switches``, the status, the totals and the concatenated columns.
-
-    Raises
-    ------
-    ValueError
-        For out-of-range tolerances or an unknown method.
-    """
-    check_range("rtol", rtol, 0.0, 1.0, low_open=True)
-    check_range("atol", atol, 0.0, math.inf, low_open=True)
-    if method not in ("Radau", "BDF", "LSODA"):
-        msg = f"method must be one of 'Radau', 'BDF', 'LSODA', got {method!r}"
-        raise ValueError(msg)
-    phase, y, sigma, on_constraint, _ = start
-    t0, phi_now = 0.0, phi0
-    pieces, switches = [], []
-    totals = {"nfev": 0, "njev": 0, "steps": 0, "wall": 0.0}
-    while True:
-        fun, jac, events = setup(phase, sigma, on_constraint)
-        run = integrate(fun, y, t_end - t0, jac=jac, rtol=rtol, atol=atol, method=method, events=events,
-                        max_steps=max(max_steps - totals["steps"], 1), progress=progress)
-        for key, value in (("nfev", run.nfev), ("njev", run.njev), ("steps", run.steps),
-                           ("wall", run.wall_time_s)):
-            totals[key] += value
-        cols = columns(phase, sigma, run.y, run.t, phi_now)
-        pieces.append((t0 + run.t, np.full(run.t.size, phase), cols))
-        status = {"completed": 0, "stopped": 1}.get(run.status, -1)
-        stop_reason = {"completed": "t_end", "stopped": run.event}.get(run.status, run.status)
-        message = run.reason if status else f"reached t_end = {t_end:.6g}"
-        if stop_reason == "max_steps":
-            message = f"more than max_steps = {max_steps} steps by t = {t0 + float(run.t[-1]):.6g}"
-        if stop_reason not in _SWITCHES:
-            break
-        t_switch = t0 + float(run.t[-1])
-        if t_switch >= t_end:  # a switch exactly at t_end ends the run
-            status, stop_reason, message = 0, "t_end", f"reached t_end = {t_end:.6g}"
-            break
-        if len(switches) >= max_switches:
-            stop_reason = "max_switches"
-            message = f"more than max_switches = {max_switches} phase switches by t = {t_switch:.6g}"
-            break
-        phi_now, t0, old = float(cols["phi"][-1]), t_switch, phase
-        phase, y, sigma, on_constraint, switch = transition(old, sigma, stop_reason, run.y[:, -1], phi_now)
-        if switch:
-            switches.append(Switch(t0, old, phase))
-
-    merged = {name: np.concatenate([p[2][name] for p in pieces]) for name in pieces[0][2]}
-    return dict(t=np.concatenate([p[0] for p in pieces]), phase=np.concatenate([p[1] for p in pieces]),
-                switches=tuple(switches), status=status, stop_reason=stop_reason, message=message,
-                nfev=totals["nfev"], njev=totals["njev"], steps=totals["steps"], wall_time_s=totals["wall"],
-                **merged)
-
-
-def _enter_contact(params, contact, phi, omega_a, omega_b, x_b) -> PhaseStart:
-    """Phase and state on touching, or on leaving a phase at D = 0 or at the friction bound.
-
-    Locked if (5.5) holds (Omega_a jumps to Omega_b, the paper's rule); else
-    sliding with sigma = sgn(D), or -sgn(C_lock) when D = 0 (module docstring).
-    """
-    bound = -math.cos(phi) * contact.tan_psi
-    c_lock = locked_friction(params, contact.kappa_star, phi)
-    if abs(c_lock) < bound:
-        return PhaseStart(LOCKED, np.array([phi, omega_b, x_b]))
-    if contact.tan_psi == 0.0:
-        sigma = 0.0
-    elif omega_b != omega_a:
-        sigma = math.copysign(1.0, omega_b - omega_a)
-    else:
-        sigma = -math.copysign(1.0, c_lock)
-    return PhaseStart(SLIDING, np.array([phi, omega_a, omega_b, x_b]), sigma)
-
-
-def _transition(phase, sigma, reason, end, phi, params, contact) -> PhaseStart:
-    """The phase after the switch ``reason`` from ``phase`` at the final state ``end`` (module docstring)."""
-    if reason == "lift":  # a locked state carries one rate, (phi, Omega, X_b)
-        rates = (end[1], end[1], end[2]) if phase == LOCKED else (end[1], end[2], end[3])
-        return PhaseStart(FREE, _on_circle(phi, *rates, contact.r_star))
-    if phase == FREE:
-        return _enter_contact(params, contact, phi, end[2], end[3], end[4])
-    if phase == SLIDING:  # D = 0: lock if (5.5) holds, else slide the other way
-        return _enter_contact(params, contact, end[0], end[2], end[2], end[3])
-    # the friction bound is reached: slide, from D = 0
-    return PhaseStart(SLIDING, np.array([end[0], end[1], end[1], end[2]]),
-                      -math.copysign(1.0, locked_friction(params, contact.kappa_star, end[0])))
-
-
-def _phase_setup(phase, sigma, params, contact, x_b0, max_turns):
-    """Right-hand side, Jacobian and the terminal events of one phase."""
-    r_star, tan_psi = contact.r_star, contact.tan_psi
-    xb = {FREE: 4, SLIDING: 3, LOCKED: 2}[phase]
-    runaway = runaway_event(lambda y: y[xb] - x_b0, max_turns)
-    if phase == FREE:
-        touch = Event("touch", lambda t, y: math.hypot(y[0], y[1]) - r_star, 1.0,
-                      lambda t: f"contact at t = {t:.6g}")
-        return (lambda t, y: reduced_rhs(t, y, params), lambda t, y: reduced_jacobian(t, y, params),
-                (touch, runaway))
-    # Beyond cos(phi) = 0 the reaction -cos(phi) would have to pull.
-    lift = Event("lift", lambda t, y: math.cos(y[0]), 1.0, lambda t: f"lift-off at t = {t:.6g}")
-    if phase == SLIDING:
-        events = (lift, runaway)
-        if tan_psi > 0.0:
-            events += (Event("stick", lambda t, y: sigma * (y[2] - y[1]), -1.0,
-                             lambda t: f"Omega_a = Omega_b at t = {t:.6g}"),)
-        args = phase_args(params, contact, sigma)
-        return (lambda t, y: sliding_rhs(t, y, args), lambda t, y: sliding_jacobian(t, y, args), events)
-
-    def slip(side):
-        return Event("slip", lambda t, y: -math.cos(y[0]) * tan_psi
-                     - side * locked_friction(params, contact.kappa_star, y[0]), -1.0,
-                     lambda t: f"friction bound (5.5) reached at t = {t:.6g}")
-
-    args = phase_args(params, contact)
-    return (lambda t, y: locked_rhs(t, y, args), lambda t, y: locked_jacobian(t, y, args),
-            (lift, runaway, slip(1.0), slip(-1.0)))
-
-
-def free_columns(y, t, phi_start: float) -> dict:
-    """Output columns of free-flight samples, y = (xi, eta, Omega_a, Omega_b, X_b, ...) of shape (n_state, n).
-
-    phi is unwrapped and continues from ``phi_start``; C_e = C_x = 0.
-    """
-    n = t.size
-    r = np.hypot(y[0], y[1])
-    kappa, omk = stretched_to_kappa(r)
-    phi = np.unwrap(np.where(r > 0.0, np.arctan2(y[0], y[1]), phi_start))
-    if n:
-        phi += 2.0 * math.pi * round((phi_start - phi[0]) / (2.0 * math.pi))
-    zeros = np.zeros(n)
-    return dict(kappa=kappa, one_minus_kappa=omk, phi=phi, omega_a=y[2], omega_b=y[3],
-                x_b=y[4], c_eps=zeros, c_chi=zeros)
-
-
-def _columns(phase, sigma, y, t, phi_start, params, contact):
-    """Output columns of one phase's samples (state y, shape (n_state, n))."""
-    if phase == FREE:
-        return free_columns(y, t, phi_start)
-    n = t.size
-    phi = y[0]
-    cos = np.cos(phi)
-    if phase == SLIDING:
-        rates = dict(omega_a=y[1], omega_b=y[2], x_b=y[3], c_chi=sigma * contact.tan_psi * cos)
-    else:
-        rates = dict(omega_a=y[1], omega_b=y[1], x_b=y[2],
-                     c_chi=locked_friction(params, contact.kappa_star, phi))
-    return dict(kappa=np.full(n, contact.kappa_star), one_minus_kappa=np.full(n, contact.one_minus_kappa_star),
-                phi=phi, c_eps=-cos, **rates)
-
-
-def simulate_contact(params: ReducedParams, contact: ContactParams, t_end: float, kappa0: float,
-                     phi0: float, omega_a0: float = 0.0, omega_b0: float = 0.0, x_b0: float = 0.0, *,
-                     rtol: float = 1e-8, atol: float = 1e-10, method: str = "LSODA",
-                     max_turns: float = MAX_TURNS, max_steps: int = 2_000_000,
-                     max_switches: int = MAX_SWITCHES, progress: str | None = None) -> ContactTrajectory:
-    """Integrate the reduced model with rough contact from t = 0 to ``t_end`` (units of tau).
-
-    Parameters
-    ----------
-    params : ReducedParams
-    contact : ContactParams
-    t_end : float
-        Final time in units of tau, positive.
-    kappa0 : float
-        Initial eccentricity in [0, kappa*]. At kappa* with cos(phi0) < 0 the
-        run starts in contact (locked or sliding as on touching).
-    phi0, omega_a0, omega_b0, x_b0 : float
-        Initial angle from the upward vertical (rad), rates (1/tau), position (b).
-    rtol, atol : float
-        Tolerances of every phase's integration.
-    method : {"Radau", "BDF", "LSODA"}
-        Implicit scipy solver; analytic Jacobians are supplied.
-    max_turns : float
-        Stop, as a runaway, after this many turns of the outer cylinder.
-    max_steps, max_switches : int
-        Budgets of accepted steps (all phases) and of phase switches; a run
-        that exceeds either stops and says so.
-    progress : str, optional
-        Label of a progress bar shown on a terminal, one bar per phase.
-
-    Returns
-    -------
-    ContactTrajectory
-
-    Raises
-    ------
-    ValueError
-        For out-of-range arguments.
-    """
-    t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True)
     kappa0 = check_range("kappa0", kappa0, 0.0, contact.kappa_star, high_open=False)
     phi0 = check_finite("phi0", phi0)
-    max_turns = check_range("max_turns", max_turns, 0.0, math.inf, low_open=True)
-    omega_a0, omega_b0, x_b0 = (check_finite(k, v) for k, v in
-                                (("omega_a0", omega_a0), ("omega_b0", omega_b0), ("x_b0", x_b0)))
-
+    run = _Run(params, contact, limits, rtol, x_b0)
     if kappa0 == contact.kappa_star and math.cos(phi0) < 0.0:
-        start = _enter_contact(params, contact, phi0, omega_a0, omega_b0, x_b0)
+        start = run.enter_contact(phi0, omega_a0, omega_b0, x_b0)
     else:
-        start = PhaseStart(FREE, initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0))
-    fields = run_phases(
-        start, lambda phase, sigma, _: _phase_setup(phase, sigma, params, contact, x_b0, max_turns),
-        lambda phase, sigma, y, t, phi: _columns(phase, sigma, y, t, phi, params, contact),
-        lambda phase, sigma, reason, end, phi: _transition(phase, sigma, reason, end, phi, params, contact),
-        t_end, phi0, rtol=rtol, atol=atol, method=method, max_steps=max_steps, max_switches=max_switches,
-        progress=progress)
-    return ContactTrajectory(**fields)
+        start = run.free(initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0))
+    return run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
+                      run.columns, t_end, phi0=phi0, method=method, rtol=rtol, t_eval=t_eval, max_steps=max_steps,
+                      max_switches=max_switches, progress=progress)
+
+

@@ -49,7 +49,7 @@ Modules, one concept each, in the order a step uses them:
     The loop (``init``, ``advance``, ``solve``): events, output rows and their
     kinds, stop reasons, counts, pausing and resuming. Generic in the model's
     functions; compiled code may call them directly (they are then compiled for
-    that model inside the caller).
+    that model inside the caller, in every process: not cached).
 ``compiled``
     :func:`engine_for`: ``init`` and ``advance`` compiled for a type of ``args``.
 ``ivp``
@@ -61,14 +61,21 @@ This package imports nothing of the project but its jit policy.
 
 from .compiled import Engine, engine_for
 from .driver import END, EVENT, SAMPLE, START, STEP, no_events
-from .ivp import INTERRUPTED, Result, check_inputs, integrate, stop_message
+from .ivp import INTERRUPTED, Interrupts, Result, check_inputs, integrate, stop_message
 from .state import (
-    MAX_STEPS_REACHED, NEWTON_FAILED, NON_FINITE, PAUSED, REACHED_END, RUNNING, STEP_TOO_SMALL,
-    TERMINAL_EVENT, State,
+    MAX_STEPS_REACHED,
+    NEWTON_FAILED,
+    NON_FINITE,
+    PAUSED,
+    REACHED_END,
+    RUNNING,
+    STEP_TOO_SMALL,
+    TERMINAL_EVENT,
+    State,
 )
 
 __all__ = [
-    "END", "EVENT", "INTERRUPTED", "MAX_STEPS_REACHED", "NEWTON_FAILED", "NON_FINITE", "PAUSED",
+    "END", "EVENT", "INTERRUPTED", "Interrupts", "MAX_STEPS_REACHED", "NEWTON_FAILED", "NON_FINITE", "PAUSED",
     "REACHED_END", "RUNNING", "SAMPLE", "START", "STEP", "STEP_TOO_SMALL", "TERMINAL_EVENT",
     "Engine", "Result", "State", "check_inputs", "engine_for", "integrate", "no_events", "stop_message",
 ]

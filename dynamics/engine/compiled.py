@@ -2,13 +2,20 @@
 
 Numba types a compiled function passed as an argument by its identity, so the
 driver would be compiled anew for every model, and (from Python) in every new
-process: tens of seconds each time. Typed instead as a first-class function,
+process: some 30 s each time. Typed instead as a first-class function,
 ``FunctionType(float64[::1](float64, float64[::1], type(args)))``, the model's
-functions are called through a pointer (a few nanoseconds more per call), and
-one compiled driver, kept in numba's disk cache, serves every model whose
-``args`` have the same numba type. :func:`engine_for` builds (or loads) that
-driver for a type of ``args``: compiled for exactly that signature and closed to
-other specialisations, so that calls from Python always take it.
+functions are called through a pointer (a few nanoseconds more per call), and one
+compiled driver, kept in numba's disk cache, serves every model whose ``args``
+have the same numba type. :func:`engine_for` builds (or loads) that driver for a
+type of ``args``: compiled for exactly that signature and closed to other
+specialisations, so that calls from Python always take it.
+
+Cache and sources. Numba ties a cached function to its own source file only,
+while the driver's machine code holds the code of every engine module. So the
+engine's inner functions are not cached on their own (``cache=False``: compiled
+afresh inside a new driver, from the current sources), and the cached driver is
+filed under a name carrying a hash of all the engine's sources: editing any
+module compiles a new driver instead of loading a stale one.
 
 The model's functions must return C-contiguous float64 arrays: ``fun`` and
 ``events`` of shape (n,) and (m,), ``jac`` of shape (n, n) (``np.array([...])``,
@@ -17,17 +24,21 @@ The model's functions must return C-contiguous float64 arrays: ``fun`` and
 
 from __future__ import annotations
 
+import hashlib
+import types as pytypes
 from collections import namedtuple
+from pathlib import Path
 
 import numba
 from numba import types
+from numba.core.types.function_type import WrapperAddressProtocol
 
 from lubrication._jit import jit
 
 from . import driver
 from .state import STATE_TYPE
 
-__all__ = ["Engine", "engine_for", "function_types"]
+__all__ = ["Engine", "engine_for", "first_class", "function_types"]
 
 #: The compiled ``driver.init`` and ``driver.advance`` for one type of ``args``.
 Engine = namedtuple("Engine", ["init", "advance"])
@@ -38,6 +49,16 @@ _INDICES = types.int64[::1]
 _ENGINES: dict = {}
 
 
+def _sources_hash() -> str:
+    digest = hashlib.sha256()
+    for path in sorted(Path(__file__).parent.glob("*.py")):
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:12]
+
+
+SOURCES_HASH = _sources_hash()
+
+
 def function_types(args_type):
     """First-class function types of ``fun``, ``jac`` and ``events`` for ``args`` of numba type ``args_type``."""
     fun = types.FunctionType(_VECTOR(types.float64, _VECTOR, args_type))
@@ -46,8 +67,12 @@ def function_types(args_type):
 
 
 def _closed(py_func, signature):
-    """A dispatcher of ``py_func`` compiled (or loaded from the cache) for ``signature`` only."""
-    dispatcher = jit(py_func)
+    """``py_func`` compiled (or loaded from the cache) for ``signature`` only, filed under the sources' hash."""
+    named = pytypes.FunctionType(py_func.__code__, py_func.__globals__, py_func.__name__, py_func.__defaults__,
+                                 py_func.__closure__)
+    named.__qualname__ = f"{py_func.__qualname__}_{SOURCES_HASH}"
+    named.__doc__ = py_func.__doc__
+    dispatcher = jit(named)
     dispatcher.compile(signature)
     dispatcher.disable_compile()
     return dispatcher
@@ -65,3 +90,40 @@ def engine_for(args) -> Engine:
         advance = _closed(driver.advance.py_func, (fun, jac, events, args_type, STATE_TYPE, i8))
         engine = _ENGINES[args_type] = Engine(init, advance)
     return engine
+
+
+class _Address(WrapperAddressProtocol):
+    """A compiled function as the driver takes it, its address looked up once.
+
+    Passed as a dispatcher, a model's function would be resolved to its
+    compiled version and address at every call of the driver from Python
+    (about 0.2 ms each, a few milliseconds per run, which dominates short
+    phases of hybrid runs and sweeps of short trajectories).
+    """
+
+    def __init__(self, dispatcher, signature):
+        dispatcher.compile(signature.args)
+        cres = dispatcher.get_compile_result(signature)
+        self._address = cres.library.get_pointer_to_function(cres.fndesc.llvm_cfunc_wrapper_name)
+        self._signature = signature
+        self._dispatcher = dispatcher  # keeps the compiled code alive
+
+    def __wrapper_address__(self):
+        return self._address
+
+    def signature(self):
+        return self._signature
+
+
+_ADDRESSES: dict = {}
+
+
+def first_class(fun, jac, events, args) -> tuple:
+    """``fun``, ``jac`` and ``events`` as first-class functions for ``args``, resolved once and kept."""
+    key = (fun, jac, events, numba.typeof(args))
+    found = _ADDRESSES.get(key)
+    if found is None:
+        fun_type, jac_type, events_type = function_types(key[3])
+        found = _ADDRESSES[key] = (_Address(fun, fun_type.signature), _Address(jac, jac_type.signature),
+                                   _Address(events, events_type.signature))
+    return found

@@ -5,13 +5,16 @@
 until the run ends or ``chunk_steps`` steps are taken, and returns the output
 rows of those steps; :func:`solve` does both in one call. They take the model's
 ``fun``, ``jac`` and ``events`` as arguments. From Python, call them through
-:func:`dynamics.engine.compiled.engine_for`, compiled once for all models; compiled
-code may call them directly, which compiles the loop for that model inside the
-caller (and into its disk cache, if it names the model's functions as globals):
+:func:`dynamics.engine.compiled.engine_for`, compiled once for all models and
+cached. Compiled code may call them directly,
 
     @jit
     def run_model(y0, t_end, args):
         return solve(rhs, rhs_jacobian, contact_events, args, 0.0, y0, t_end, ...)
+
+which compiles the whole loop for that model inside the caller (about 30 s), and
+again in every process: a compiled function handed on as a value is a pointer to
+a Python object, which numba does not write to its disk cache.
 
 Output rows. Each row is (t, y, kind, event); ``kind`` is a sum of flags: START
 (the initial state), STEP (an accepted step, when every step is output), SAMPLE
@@ -41,15 +44,45 @@ import numpy as np
 
 from lubrication._jit import jit
 
-from .radau import copy_into, dense_eval, evaluate, initial_step, new_work, newton_tolerance, step
+from .radau import (
+    copy_into,
+    dense_eval,
+    evaluate,
+    evaluate_jacobian,
+    initial_step,
+    new_work,
+    newton_tolerance,
+    step,
+)
 from .roots import event_root
 from .state import (
-    CURRENT_JAC, EVERY_STEP, H_ABS, MAX_STEP, MAX_STEPS, MAX_STEPS_REACHED, NEWTON_TOL, NFEV,
-    NJEV, NON_FINITE, PAUSED, REACHED_END, RTOL, RUNNING, STARTED, STATUS, STEPS, STOP_EVENT,
-    T, T_END, T_EVAL_POS, T_OLD, TERMINAL_EVENT, new_state,
+    CURRENT_JAC,
+    EVERY_STEP,
+    H_ABS,
+    MAX_STEP,
+    MAX_STEPS,
+    MAX_STEPS_REACHED,
+    NEWTON_TOL,
+    NFEV,
+    NJEV,
+    NON_FINITE,
+    PAUSED,
+    REACHED_END,
+    RTOL,
+    RUNNING,
+    STARTED,
+    STATUS,
+    STEPS,
+    STOP_EVENT,
+    T_END,
+    T_EVAL_POS,
+    T_OLD,
+    TERMINAL_EVENT,
+    T,
+    new_state,
 )
 
-__all__ = ["START", "STEP", "SAMPLE", "EVENT", "END", "init", "advance", "solve", "no_events"]
+__all__ = ["END", "EVENT", "SAMPLE", "START", "STEP", "advance", "init", "no_events", "solve"]
 
 # Row kinds (flags, a row may carry several). Numpy integers, so that numba does not
 # compile a separate version of every function they are passed to for each value.
@@ -71,13 +104,13 @@ def no_events(t, y, args):
     return np.empty(0)
 
 
-@jit
+@jit(cache=False)
 def _new_rows(n, capacity):
     return Rows(np.empty(capacity), np.empty((capacity, n)), np.zeros(capacity, dtype=np.int64),
                 np.full(capacity, -1, dtype=np.int64), np.zeros(1, dtype=np.int64))
 
 
-@jit
+@jit(cache=False, inline="always")
 def _push(rows, t, y, kind, event):
     """Append a row, doubling the arrays when full; returns the (possibly new) rows."""
     k = rows.count[0]
@@ -100,7 +133,7 @@ def _push(rows, t, y, kind, event):
     return rows
 
 
-@jit
+@jit(cache=False, inline="always")
 def _emit_samples(s, rows, t_upto, y):
     """Rows at the requested times up to ``t_upto`` inside the last step (y (n,) is scratch)."""
     t_eval = s.t_eval
@@ -116,7 +149,7 @@ def _emit_samples(s, rows, t_upto, y):
     return rows
 
 
-@jit
+@jit(cache=False, inline="always")
 def _crosses(g_old, g_new, direction):
     """Whether an event with values g_old, g_new at a step's ends fires in it."""
     up = g_old < 0.0 and g_new >= 0.0
@@ -124,7 +157,7 @@ def _crosses(g_old, g_new, direction):
     return (up and direction >= 0) or (down and direction <= 0)
 
 
-@jit
+@jit(cache=False, inline="always")
 def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratch):
     """Events and output rows of the step just accepted; sets the status when the run ends."""
     t_new = s.scalars[T]
@@ -171,7 +204,7 @@ def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratc
     return rows
 
 
-@jit
+@jit(cache=False)
 def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
          t_eval, every_step, terminal, direction):
     """A new run at (t0, y0), ready for :func:`advance`.
@@ -238,14 +271,14 @@ def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step
     else:
         sc[H_ABS] = initial_step(fun, args, t0, s.y, s.f, t_end, max_step, rtol, s.atol, counters)
     counters[NJEV] += 1
-    if not evaluate(jac, t0, s.y, args, s.jac):
+    if not evaluate_jacobian(jac, t0, s.y, args, s.jac):
         counters[STATUS] = NON_FINITE
         return s
     counters[CURRENT_JAC] = 1
     return s
 
 
-@jit
+@jit(cache=False)
 def advance(fun, jac, events, args, s, chunk_steps):
     """Step the run ``s`` until it ends, or for ``chunk_steps`` accepted steps (> 0) and pause.
 
@@ -310,14 +343,14 @@ def advance(fun, jac, events, args, s, chunk_steps):
     return _trimmed(rows)
 
 
-@jit
+@jit(cache=False)
 def _trimmed(rows):
     k = rows.count[0]
     return (rows.t[:k].copy(), np.ascontiguousarray(rows.y[:k].T), rows.kind[:k].copy(),
             rows.event[:k].copy())
 
 
-@jit
+@jit(cache=False)
 def solve(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
           t_eval, every_step, terminal, direction):
     """:func:`init` and :func:`advance` to the end in one call; returns (t, y, kind, event, state)."""

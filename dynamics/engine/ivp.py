@@ -14,21 +14,34 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .compiled import engine_for
+from .compiled import engine_for, first_class
 from .driver import END, EVENT, no_events
 from .state import (
-    MAX_STEPS_REACHED, NEWTON_FAILED, NFEV, NJEV, NLU, NON_FINITE, PAUSED, REACHED_END, REJECTED,
-    STATUS, STEP_TOO_SMALL, STEPS, STOP_EVENT, T, TERMINAL_EVENT,
+    MAX_STEPS_REACHED,
+    NEWTON_FAILED,
+    NFEV,
+    NJEV,
+    NLU,
+    NON_FINITE,
+    PAUSED,
+    REACHED_END,
+    REJECTED,
+    STATUS,
+    STEP_TOO_SMALL,
+    STEPS,
+    STOP_EVENT,
+    TERMINAL_EVENT,
+    T,
 )
 
-__all__ = ["INTERRUPTED", "Result", "check_inputs", "integrate", "stop_message"]
+__all__ = ["INTERRUPTED", "Interrupts", "Result", "check_inputs", "integrate", "stop_message"]
 
 EPS = np.finfo(float).eps
 #: Status of a run stopped by Ctrl-C between two chunks (set by :func:`integrate` only).
 INTERRUPTED = -5
 
 
-def stop_message(code: int, t: float, event: int = -1) -> str:
+def stop_message(code: int, t: float, event: int = -1, by: str = "") -> str:
     """A sentence saying why a run stopped at time ``t``."""
     messages = {
         REACHED_END: f"reached t_end = {t:.17g}",
@@ -38,7 +51,7 @@ def stop_message(code: int, t: float, event: int = -1) -> str:
         STEP_TOO_SMALL: f"the step size fell below the rounding level of t at t = {t:.17g}",
         NEWTON_FAILED: f"the Newton iteration failed repeatedly, down to the smallest step, at t = {t:.17g}",
         NON_FINITE: f"the right-hand side or its Jacobian was not finite at t = {t:.17g}",
-        INTERRUPTED: f"interrupted at t = {t:.17g}",
+        INTERRUPTED: f"interrupted{' by ' + by if by else ''} at t = {t:.17g}",
     }
     return messages[code]
 
@@ -108,7 +121,7 @@ def _int_per_event(value, m: int, name: str) -> np.ndarray:
     return as_int.copy()
 
 
-def check_inputs(fun, jac, events, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, t_eval=None,
+def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, t_eval=None,
                  terminal=0, direction=0, first_step=None, max_step=np.inf, max_steps=1_000_000):
     """Check and normalise the inputs of a run; returns the keyword arguments of ``driver.init``.
 
@@ -160,6 +173,8 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9,
     if t_eval.size and (t_eval[0] < t0 or t_eval[-1] > t_end):
         msg = f"t_eval must lie in [t0, t_end] = [{t0:g}, {t_end:g}]"
         raise ValueError(msg)
+    if args is None:
+        args = np.zeros(0)
     f0 = np.asarray(fun(t0, y0, args))
     if f0.shape != (n,):
         msg = f"fun must return shape ({n},), got {f0.shape}"
@@ -186,29 +201,35 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9,
             "t_eval": t_eval, "every_step": every_step, "terminal": terminal, "direction": direction}
 
 
-class _CtrlC:
-    """Within ``with``: Ctrl-C sets ``pressed`` instead of raising (main thread only)."""
+class Interrupts:
+    """Within ``with``: SIGINT (Ctrl-C) and SIGTERM set :attr:`received` instead of ending the process.
+
+    A run checks it between chunks of steps and stops there with what it
+    computed. Only in the main thread, and only for a signal whose handler is
+    the default one (a program that handles a signal itself keeps it).
+    """
 
     def __init__(self):
-        self.pressed = False
-        self._previous = None
+        self.received = ""
+        self._previous = {}
 
     def __enter__(self):
-        if threading.current_thread() is threading.main_thread() and \
-                signal.getsignal(signal.SIGINT) is signal.default_int_handler:
-            self._previous = signal.signal(signal.SIGINT, self._press)
+        if threading.current_thread() is threading.main_thread():
+            for sig, default in ((signal.SIGINT, signal.default_int_handler), (signal.SIGTERM, signal.SIG_DFL)):
+                if signal.getsignal(sig) is default:
+                    self._previous[sig] = signal.signal(sig, self._note)
         return self
 
-    def _press(self, signum, frame):
-        self.pressed = True
+    def _note(self, signum, frame):
+        self.received = self.received or signal.Signals(signum).name
 
     def __exit__(self, *exc):
-        if self._previous is not None:
-            signal.signal(signal.SIGINT, self._previous)
+        for sig, handler in self._previous.items():
+            signal.signal(sig, handler)
         return False
 
 
-def integrate(fun, jac, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, events=None, terminal=0,
+def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=None, terminal=0,
               direction=0, t_eval=None, first_step=None, max_step=np.inf, max_steps=1_000_000,
               chunk_steps=10_000, progress=None) -> Result:
     """Integrate y' = fun(t, y, args) over ``t_span`` with the compiled Radau IIA engine.
@@ -221,7 +242,9 @@ def integrate(fun, jac, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, events=Non
         (t0, t_end), t_end > t0.
     y0 : array_like, shape (n,)
     args : numba-typable, optional
-        Passed to ``fun``, ``jac`` and ``events`` (a tuple of floats and arrays, say).
+        Passed to ``fun``, ``jac`` and ``events``; an empty float64 array by
+        default. The driver is compiled once per numba type of ``args``: a
+        float64 array serves most models.
     rtol : float
         In [100 eps, 1).
     atol : float or array_like, shape (n,)
@@ -250,6 +273,8 @@ def integrate(fun, jac, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, events=Non
     """
     if events is None:
         events = no_events
+    if args is None:
+        args = np.zeros(0)
     if int(chunk_steps) != chunk_steps or chunk_steps < 1:
         msg = f"chunk_steps must be an integer >= 1, got {chunk_steps}"
         raise ValueError(msg)
@@ -257,16 +282,17 @@ def integrate(fun, jac, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, events=Non
                           terminal=terminal, direction=direction, first_step=first_step,
                           max_step=max_step, max_steps=max_steps)
     engine = engine_for(args)
+    fun, jac, events = first_class(fun, jac, events, args)
     state = engine.init(fun, jac, events, args, **inputs)
     pieces = []
-    with _CtrlC() as ctrl_c:
+    with Interrupts() as interrupts:
         while True:
             pieces.append(engine.advance(fun, jac, events, args, state, int(chunk_steps)))
             if state.counters[STATUS] != PAUSED:
                 break
             if progress is not None:
                 progress(float(state.scalars[T]))
-            if ctrl_c.pressed:
+            if interrupts.received:
                 break
     code = int(state.counters[STATUS])
     t = np.concatenate([p[0] for p in pieces])
@@ -287,7 +313,8 @@ def integrate(fun, jac, t_span, y0, *, args=(), rtol=1e-6, atol=1e-9, events=Non
     status = 0 if code == REACHED_END else 1 if code == TERMINAL_EVENT else -1
     counters = state.counters
     return Result(t=t, y=y, kind=kind, event=event, t_events=t_events, y_events=y_events,
-                  status=status, code=code, message=stop_message(code, float(state.scalars[T]), stop_event),
+                  status=status, code=code,
+                  message=stop_message(code, float(state.scalars[T]), stop_event, interrupts.received),
                   success=status >= 0, stop_event=stop_event, nfev=int(counters[NFEV]),
                   njev=int(counters[NJEV]), nlu=int(counters[NLU]), steps=int(counters[STEPS]),
                   rejected=int(counters[REJECTED]), state=state)

@@ -21,7 +21,7 @@ from lubrication._jit import jit
 __all__ = ["lu_factor", "lu_solve"]
 
 
-@jit
+@jit(cache=False)
 def lu_factor(a, piv):
     """Factor ``a`` in place as P a = L U; return False if a pivot is exactly zero.
 
@@ -66,7 +66,7 @@ def lu_factor(a, piv):
     return regular
 
 
-@jit
+@jit(cache=False, inline="always")
 def lu_solve(lu, piv, b):
     """Overwrite ``b`` (shape (n,)) with the solution x of A x = b, given :func:`lu_factor`'s output."""
     n = lu.shape[0]

@@ -64,15 +64,49 @@ from lubrication._jit import jit
 
 from .linalg import lu_factor, lu_solve
 from .state import (
-    CURRENT_JAC, ERR_OLD, H_ABS, H_ABS_OLD, HAS_DENSE, LU_VALID, MAX_STEP, NEWTON_FAILED,
-    NEWTON_TOL, NFEV, NJEV, NLU, NON_FINITE, REJECTED, RTOL, RUNNING, STEP_TOO_SMALL, STEPS, T,
-    T_END, T_OLD,
+    CURRENT_JAC,
+    ERR_OLD,
+    H_ABS,
+    H_ABS_OLD,
+    HAS_DENSE,
+    LU_VALID,
+    MAX_STEP,
+    NEWTON_FAILED,
+    NEWTON_TOL,
+    NFEV,
+    NJEV,
+    NLU,
+    NON_FINITE,
+    REJECTED,
+    RTOL,
+    RUNNING,
+    STEP_TOO_SMALL,
+    STEPS,
+    T_END,
+    T_OLD,
+    T,
 )
 
 __all__ = [
-    "A", "C", "E", "MU_REAL", "MU_COMPLEX", "T_MATRIX", "T_INVERSE", "P",
-    "Work", "new_work", "all_finite", "copy_into", "evaluate", "dense_eval", "initial_step", "predict_factor", "solve_collocation", "step",
+    "MU_COMPLEX",
+    "MU_REAL",
+    "T_INVERSE",
+    "T_MATRIX",
+    "A",
+    "C",
+    "E",
+    "P",
+    "Work",
+    "copy_into",
+    "dense_eval",
+    "evaluate",
+    "evaluate_jacobian",
+    "initial_step",
+    "new_work",
     "newton_tolerance",
+    "predict_factor",
+    "solve_collocation",
+    "step",
 ]
 
 EPS = np.finfo(float).eps
@@ -129,7 +163,7 @@ Work = namedtuple("Work", ["Z0", "Z", "W", "F", "dW", "scale", "y_new", "f_new",
                            "b_real", "b_complex"])
 
 
-@jit
+@jit(cache=False)
 def new_work(n):
     """Allocate the scratch arrays of :func:`step` for ``n`` states."""
     return Work(np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)),
@@ -137,44 +171,34 @@ def new_work(n):
                 np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.complex128))
 
 
-@jit
+@jit(cache=False)
 def newton_tolerance(rtol):
     """Tolerance of the Newton iteration on the scaled increments (as RADAU5 and scipy)."""
     return max(10.0 * EPS / rtol, min(0.03, math.sqrt(rtol)))
 
 
-@jit
+@jit(cache=False, inline="always")
 def _rms(x, scale):
-    """Root-mean-square of x / scale over all entries; x of shape (n,) or (3, n)."""
+    """Root-mean-square of x / scale, x of shape (n,)."""
     total = 0.0
-    if x.ndim == 1:
-        for j in range(x.shape[0]):
-            r = x[j] / scale[j]
+    for j in range(x.shape[0]):
+        r = x[j] / scale[j]
+        total += r * r
+    return math.sqrt(total) / math.sqrt(x.shape[0])
+
+
+@jit(cache=False, inline="always")
+def _rms_stages(x, scale):
+    """Root-mean-square of x / scale over all entries, x of shape (3, n), scale of each column."""
+    total = 0.0
+    for i in range(x.shape[0]):
+        for j in range(x.shape[1]):
+            r = x[i, j] / scale[j]
             total += r * r
-    else:
-        for i in range(x.shape[0]):
-            for j in range(x.shape[1]):
-                r = x[i, j] / scale[j]
-                total += r * r
     return math.sqrt(total) / math.sqrt(x.size)
 
 
-@jit
-def all_finite(x):
-    """Whether every entry of ``x`` (shape (n,) or (n, n)) is finite."""
-    if x.ndim == 1:
-        for v in x:
-            if not math.isfinite(v):
-                return False
-    else:
-        for i in range(x.shape[0]):
-            for j in range(x.shape[1]):
-                if not math.isfinite(x[i, j]):
-                    return False
-    return True
-
-
-@jit
+@jit(cache=False)
 def copy_into(dst, src):
     """``dst[...] = src`` for arrays of equal shape (n,) or (n, n), without broadcasting."""
     if dst.ndim == 1:
@@ -186,31 +210,45 @@ def copy_into(dst, src):
                 dst[i, j] = src[i, j]
 
 
-@jit
+# Inlined where they are called (like the other helpers of a step): numba counts
+# references to every array handed to a function that is called, with atomic
+# operations that cost as much as the rest of a step.
+@jit(cache=False, inline="always")
 def evaluate(function, t, y, args, out):
-    """``out[...] = function(t, y, args)``; returns whether every value is finite.
-
-    The one place each kind of user function is called from, so that the code of
-    calling a first-class function is compiled once.
-    """
+    """``out[:] = function(t, y, args)`` for ``fun`` or ``events``; returns whether every value is finite."""
     value = function(t, y, args)
-    copy_into(out, value)
-    return all_finite(value)
+    finite = True
+    for j in range(out.shape[0]):
+        out[j] = value[j]
+        finite = finite and math.isfinite(value[j])
+    return finite
 
 
-@jit
+@jit(cache=False, inline="always")
+def evaluate_jacobian(jac, t, y, args, out):
+    """``out[:, :] = jac(t, y, args)``; returns whether every value is finite."""
+    value = jac(t, y, args)
+    finite = True
+    for i in range(out.shape[0]):
+        for j in range(out.shape[1]):
+            out[i, j] = value[i, j]
+            finite = finite and math.isfinite(value[i, j])
+    return finite
+
+
+@jit(cache=False, inline="always")
 def dense_eval(s, t, out):
     """Write the last step's collocation polynomial at time ``t`` into ``out`` (n,)."""
     t_old = s.scalars[T_OLD]
     x = (t - t_old) / (s.scalars[T] - t_old)
     x2 = x * x
     x3 = x2 * x
-    q = s.dense
+    q, y_old = s.dense, s.y_old
     for j in range(out.shape[0]):
-        out[j] = (q[j, 0] * x + q[j, 1] * x2 + q[j, 2] * x3) + s.y_old[j]
+        out[j] = (q[j, 0] * x + q[j, 1] * x2 + q[j, 2] * x3) + y_old[j]
 
 
-@jit
+@jit(cache=False)
 def initial_step(fun, args, t0, y0, f0, t_end, max_step, rtol, atol, counters):
     """First step size for an error of order 4 (HW I, section II.4, as scipy chooses it).
 
@@ -246,7 +284,7 @@ def initial_step(fun, args, t0, y0, f0, t_end, max_step, rtol, atol, counters):
     return min(100.0 * h0, h1, interval, max_step)
 
 
-@jit
+@jit(cache=False, inline="always")
 def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
     """Step factor err^(-1/4), reduced by Gustafsson's predictive controller when a history exists.
 
@@ -261,7 +299,7 @@ def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
     return min(1.0, multiplier) * error_norm ** -0.25
 
 
-@jit
+@jit(cache=False, inline="always")
 def solve_collocation(fun, args, t, y, h, tol, s, w):
     """Simplified Newton iteration for the stages, from the starting guess ``w.Z0``.
 
@@ -273,10 +311,12 @@ def solve_collocation(fun, args, t, y, h, tol, s, w):
     counters = s.counters
     m_real = MU_REAL / h
     m_complex = MU_COMPLEX / h
-    Z, W, F, dW = w.Z, w.W, w.F, w.dW
+    # (arrays taken out of the tuples once: numba counts a reference at each access)
+    Z, W, F, dW, Z0, y_stage = w.Z, w.W, w.F, w.dW, w.Z0, w.y_stage
+    b_real, b_complex, scale = w.b_real, w.b_complex, w.scale
     for i in range(3):
         for j in range(n):
-            Z[i, j] = w.Z0[i, j]
+            Z[i, j] = Z0[i, j]
     for i in range(3):
         for j in range(n):
             W[i, j] = T_INVERSE[i, 0] * Z[0, j] + T_INVERSE[i, 1] * Z[1, j] + T_INVERSE[i, 2] * Z[2, j]
@@ -285,22 +325,22 @@ def solve_collocation(fun, args, t, y, h, tol, s, w):
     for k in range(NEWTON_MAXITER):
         for i in range(3):
             for j in range(n):
-                w.y_stage[j] = y[j] + Z[i, j]
+                y_stage[j] = y[j] + Z[i, j]
             counters[NFEV] += 1
-            if not evaluate(fun, t + C[i] * h, w.y_stage, args, F[i]):
+            if not evaluate(fun, t + C[i] * h, y_stage, args, F[i]):
                 return False, k + 1, rate, False
         for j in range(n):
-            w.b_real[j] = (F[0, j] * TI_REAL[0] + F[1, j] * TI_REAL[1] + F[2, j] * TI_REAL[2]
+            b_real[j] = (F[0, j] * TI_REAL[0] + F[1, j] * TI_REAL[1] + F[2, j] * TI_REAL[2]
                            - m_real * W[0, j])
-            w.b_complex[j] = (F[0, j] * TI_COMPLEX[0] + F[1, j] * TI_COMPLEX[1] + F[2, j] * TI_COMPLEX[2]
+            b_complex[j] = (F[0, j] * TI_COMPLEX[0] + F[1, j] * TI_COMPLEX[1] + F[2, j] * TI_COMPLEX[2]
                               - m_complex * complex(W[1, j], W[2, j]))
-        lu_solve(s.lu_real, s.piv_real, w.b_real)
-        lu_solve(s.lu_complex, s.piv_complex, w.b_complex)
+        lu_solve(s.lu_real, s.piv_real, b_real)
+        lu_solve(s.lu_complex, s.piv_complex, b_complex)
         for j in range(n):
-            dW[0, j] = w.b_real[j]
-            dW[1, j] = w.b_complex[j].real
-            dW[2, j] = w.b_complex[j].imag
-        dw_norm = _rms(dW, w.scale)
+            dW[0, j] = b_real[j]
+            dW[1, j] = b_complex[j].real
+            dW[2, j] = b_complex[j].imag
+        dw_norm = _rms_stages(dW, scale)
         if not math.isnan(dw_norm_old):
             rate = dw_norm / dw_norm_old
         if not math.isnan(rate) and (
@@ -318,24 +358,25 @@ def solve_collocation(fun, args, t, y, h, tol, s, w):
     return False, NEWTON_MAXITER, rate, True
 
 
-@jit
+@jit(cache=False, inline="always")
 def _factor(s, h):
     """Form and factor both Newton matrices for step ``h``; False if one is singular."""
     n = s.y.shape[0]
     m_real = MU_REAL / h
     m_complex = MU_COMPLEX / h
+    lu_real, lu_complex, jac = s.lu_real, s.lu_complex, s.jac
     for i in range(n):
         for j in range(n):
-            s.lu_real[i, j] = -s.jac[i, j]
-            s.lu_complex[i, j] = -s.jac[i, j]
-        s.lu_real[i, i] += m_real
-        s.lu_complex[i, i] += m_complex
+            lu_real[i, j] = -jac[i, j]
+            lu_complex[i, j] = -jac[i, j]
+        lu_real[i, i] += m_real
+        lu_complex[i, i] += m_complex
     s.counters[NLU] += 2
-    regular = lu_factor(s.lu_real, s.piv_real)
-    return lu_factor(s.lu_complex, s.piv_complex) and regular
+    regular = lu_factor(lu_real, s.piv_real)
+    return lu_factor(lu_complex, s.piv_complex) and regular
 
 
-@jit
+@jit(cache=False, inline="always")
 def step(fun, jac, args, s, w):
     """Take one accepted step from ``s`` (in place), retrying with smaller steps as needed.
 
@@ -347,6 +388,9 @@ def step(fun, jac, args, s, w):
     n = s.y.shape[0]
     t, y, f = sc[T], s.y, s.f
     rtol, atol = sc[RTOL], s.atol
+    # (arrays taken out of the tuples once: numba counts a reference at each access)
+    Z0, Z, y_stage, scale, y_new, f_new = w.Z0, w.Z, w.y_stage, w.scale, w.y_new, w.f_new
+    err, ze, lu_real, piv_real = w.err, w.ze, s.lu_real, s.piv_real
     min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
     h_abs, h_abs_old, error_norm_old = sc[H_ABS], sc[H_ABS_OLD], sc[ERR_OLD]
     if h_abs > sc[MAX_STEP]:
@@ -357,7 +401,7 @@ def step(fun, jac, args, s, w):
     rejected = False
     failure = STEP_TOO_SMALL  # what to report if the step size runs out
     while True:
-        if h_abs < min_step:
+        if not h_abs >= min_step:  # (also ends a step size gone NaN)
             return failure
         t_new = min(t + h_abs, sc[T_END])
         h = t_new - t
@@ -365,15 +409,15 @@ def step(fun, jac, args, s, w):
 
         if counters[HAS_DENSE]:  # extrapolate the last collocation polynomial
             for i in range(3):
-                dense_eval(s, t + h * C[i], w.y_stage)
+                dense_eval(s, t + h * C[i], y_stage)
                 for j in range(n):
-                    w.Z0[i, j] = w.y_stage[j] - y[j]
+                    Z0[i, j] = y_stage[j] - y[j]
         else:
             for i in range(3):
                 for j in range(n):
-                    w.Z0[i, j] = 0.0
+                    Z0[i, j] = 0.0
         for j in range(n):
-            w.scale[j] = atol[j] + abs(y[j]) * rtol
+            scale[j] = atol[j] + abs(y[j]) * rtol
 
         converged, finite = False, True
         n_iter, rate = 0, np.nan
@@ -390,7 +434,7 @@ def step(fun, jac, args, s, w):
                 if counters[CURRENT_JAC]:
                     break
                 counters[NJEV] += 1
-                if not evaluate(jac, t, y, args, s.jac):
+                if not evaluate_jacobian(jac, t, y, args, s.jac):
                     return NON_FINITE
                 counters[CURRENT_JAC] = 1
                 counters[LU_VALID] = 0
@@ -402,23 +446,23 @@ def step(fun, jac, args, s, w):
             continue
 
         for j in range(n):
-            w.y_new[j] = y[j] + w.Z[2, j]
-            w.ze[j] = (w.Z[0, j] * E[0] + w.Z[1, j] * E[1] + w.Z[2, j] * E[2]) / h
-            w.err[j] = f[j] + w.ze[j]
-        lu_solve(s.lu_real, s.piv_real, w.err)
+            y_new[j] = y[j] + Z[2, j]
+            ze[j] = (Z[0, j] * E[0] + Z[1, j] * E[1] + Z[2, j] * E[2]) / h
+            err[j] = f[j] + ze[j]
+        lu_solve(lu_real, piv_real, err)
         for j in range(n):
-            w.scale[j] = atol[j] + max(abs(y[j]), abs(w.y_new[j])) * rtol
-        error_norm = _rms(w.err, w.scale)
+            scale[j] = atol[j] + max(abs(y[j]), abs(y_new[j])) * rtol
+        error_norm = _rms(err, scale)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
         if rejected and error_norm > 1.0:  # refine: one more filtering by the Newton matrix
             for j in range(n):
-                w.y_stage[j] = y[j] + w.err[j]
-            evaluate(fun, t, w.y_stage, args, w.f_new)
+                y_stage[j] = y[j] + err[j]
+            evaluate(fun, t, y_stage, args, f_new)
             counters[NFEV] += 1
             for j in range(n):
-                w.err[j] = w.f_new[j] + w.ze[j]
-            lu_solve(s.lu_real, s.piv_real, w.err)
-            error_norm = _rms(w.err, w.scale)
+                err[j] = f_new[j] + ze[j]
+            lu_solve(lu_real, piv_real, err)
+            error_norm = _rms(err, scale)
         if not error_norm <= 1.0:
             if math.isnan(error_norm):
                 h_abs *= MIN_FACTOR
@@ -442,11 +486,11 @@ def step(fun, jac, args, s, w):
         counters[LU_VALID] = 0
 
     counters[NFEV] += 1
-    if not evaluate(fun, t_new, w.y_new, args, w.f_new):
+    if not evaluate(fun, t_new, y_new, args, f_new):
         return NON_FINITE
     if recompute_jac:
         counters[NJEV] += 1
-        if not evaluate(jac, t_new, w.y_new, args, s.jac):
+        if not evaluate_jacobian(jac, t_new, y_new, args, s.jac):
             return NON_FINITE  # (the run ends here: the state's Jacobian no longer matters)
     counters[CURRENT_JAC] = 1 if recompute_jac else 0
 
@@ -456,12 +500,13 @@ def step(fun, jac, args, s, w):
     sc[H_ABS] = h_abs * factor
     sc[T_OLD] = t
     sc[T] = t_new
+    y_old, dense = s.y_old, s.dense
     for j in range(n):
-        s.y_old[j] = y[j]
-        y[j] = w.y_new[j]
-        f[j] = w.f_new[j]
+        y_old[j] = y[j]
+        y[j] = y_new[j]
+        f[j] = f_new[j]
         for k in range(3):
-            s.dense[j, k] = w.Z[0, j] * P[0, k] + w.Z[1, j] * P[1, k] + w.Z[2, j] * P[2, k]
+            dense[j, k] = Z[0, j] * P[0, k] + Z[1, j] * P[1, k] + Z[2, j] * P[2, k]
     counters[HAS_DENSE] = 1
     counters[STEPS] += 1
     return RUNNING

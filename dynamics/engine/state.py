@@ -41,12 +41,39 @@ import numpy as np
 from lubrication._jit import jit
 
 __all__ = [
-    "State", "new_state",
-    "T", "T_OLD", "H_ABS", "H_ABS_OLD", "ERR_OLD", "NEWTON_TOL", "RTOL", "T_END", "MAX_STEP",
-    "NFEV", "NJEV", "NLU", "STEPS", "REJECTED", "STATUS", "STOP_EVENT", "CURRENT_JAC", "LU_VALID",
-    "HAS_DENSE", "T_EVAL_POS", "EVERY_STEP", "MAX_STEPS", "STARTED",
-    "RUNNING", "REACHED_END", "TERMINAL_EVENT", "PAUSED",
-    "MAX_STEPS_REACHED", "STEP_TOO_SMALL", "NEWTON_FAILED", "NON_FINITE",
+    "CURRENT_JAC",
+    "ERR_OLD",
+    "EVERY_STEP",
+    "HAS_DENSE",
+    "H_ABS",
+    "H_ABS_OLD",
+    "LU_VALID",
+    "MAX_STEP",
+    "MAX_STEPS",
+    "MAX_STEPS_REACHED",
+    "NEWTON_FAILED",
+    "NEWTON_TOL",
+    "NFEV",
+    "NJEV",
+    "NLU",
+    "NON_FINITE",
+    "PAUSED",
+    "REACHED_END",
+    "REJECTED",
+    "RTOL",
+    "RUNNING",
+    "STARTED",
+    "STATUS",
+    "STEPS",
+    "STEP_TOO_SMALL",
+    "STOP_EVENT",
+    "TERMINAL_EVENT",
+    "T_END",
+    "T_EVAL_POS",
+    "T_OLD",
+    "State",
+    "T",
+    "new_state",
 ]
 
 State = namedtuple("State", [
@@ -74,7 +101,7 @@ NEWTON_FAILED = -3
 NON_FINITE = -4
 
 
-@jit
+@jit(cache=False)
 def new_state(n, m, t_eval):
     """Allocate a :class:`State` for ``n`` states and ``m`` events, sampling at ``t_eval``.
 

@@ -1,15 +1,16 @@
 """The force-model interface the equations of motion call, with one adapter per lubrication model.
 
-A :class:`ForceModel` is plain data (the arrays its kernel needs, None for
-what it does not use), so that the right-hand side of the equations of motion
-is jitted and calls :func:`evaluate` for any model without Python in the loop.
-The model is told apart by which data are None: numba prunes the branches of
-the other models when it compiles, so a run compiles (and caches) only the
-kernel it uses, not every kernel of the project.
+A :class:`ForceModel` is plain data: a kind and the arrays its kernel needs
+(empty arrays for what it does not use), so that the right-hand side of the
+equations of motion is compiled and calls :func:`evaluate` for any model without
+Python in the loop. Every model has the same data types, so the compiled
+integrator and the equations are compiled once for all of them (the kind is
+told apart at run time, at the cost of one branch).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -17,14 +18,19 @@ import numpy as np
 from lubrication import _cavitation_kernels, _kernels
 from lubrication._jit import jit
 from lubrication.cavitation import CAVITATION_MODELS
-from lubrication.closed_form import lubrication_forces
-from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
+from lubrication.closed_form import lubrication_resistance
+from lubrication.finite_length import finite_length_factor_kernel
+from lubrication.geometry import Annulus, Fluid, FluidForces, Motion, check_range
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
 from lubrication.stokes_exact import stokes_exact_resistance
 
 __all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "evaluate", "force_model", "reynolds", "stokes_exact"]
 
 FORCE_MODELS = ("closed-form", "reynolds", "stokes-exact", "stokes")
+ENDS = ("infinite", "open")
+
+#: Kinds of force model, as :func:`evaluate` tells them apart.
+CLOSED, REYNOLDS, CAVITATING, EXACT = range(4)
 
 
 @dataclass(frozen=True)
@@ -35,45 +41,79 @@ class ForceModel:
     ----------
     name : str
         "closed-form", "reynolds", "reynolds/<cavitation model>" or "stokes-exact".
+    kind : int
+        :data:`CLOSED`, :data:`REYNOLDS`, :data:`CAVITATING` or :data:`EXACT`.
     profile : int
         Gap profile of the Reynolds kernel (thin or eccentric).
     sommerfeld : bool
         Reynolds grid uniform in the Sommerfeld angle (True) or in theta.
-    rule : tuple of ndarray or None
+    rule : tuple of 5 ndarray
         cos, sin, 1 - cos, 1 + cos of psi and the weights at the Gauss points
-        of the Reynolds grid; None for the closed forms and Stokes.
+        of the Reynolds grid; empty for the other kinds.
     points_per_cell : int
         Gauss points per cell of the Reynolds grid.
-    exact : ndarray or None
+    factors : ndarray, shape (5,)
         For the exact Stokes forces: factors on the five resistance coefficients
         (:data:`lubrication.geometry.RESISTANCE_NAMES` order), ones for an
         annulus of infinite length.
-    cavitation : tuple or None
+    cavitation : tuple
         (model code in CAVITATION_MODELS, p_cav, p_ref) of a cavitating Reynolds film.
+    length_over_a : float
+        L/a of an annulus whose gap opens at both ends into end regions
+        (:mod:`lubrication.finite_length`); inf for an infinitely long one.
+        The closed forms and the exact Stokes forces are then scaled,
+        coefficient by coefficient, by the thin-gap finite-length factors.
+    length_table : tuple
+        ``lubrication.finite_length.factor_table().args`` (empty arrays when infinite).
     options : dict
         The options the model was built with, for the record.
     """
 
     name: str
+    kind: int = 0
     profile: int = _kernels.THIN
     sommerfeld: bool = True
-    rule: tuple | None = None
+    rule: tuple = field(default_factory=lambda: tuple(np.empty(0) for _ in range(5)))
     points_per_cell: int = 1
-    exact: np.ndarray | None = None
-    cavitation: tuple | None = None
+    factors: np.ndarray = field(default_factory=lambda: np.ones(5))
+    cavitation: tuple = (0, 0.0, 0.0)
+    length_over_a: float = math.inf
+    length_table: tuple = field(default_factory=lambda: (np.empty((0, 0)), np.empty((0, 0)), 1.0, 1.0))
     options: dict = field(default_factory=dict)
+
+    @property
+    def data(self) -> tuple:
+        """The model as :func:`evaluate` (and the equations of motion) take it."""
+        return (self.kind, self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.factors,
+                self.cavitation, self.length_over_a, self.length_table)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
-        f = evaluate(self.profile, self.sommerfeld, self.rule, self.points_per_cell, self.exact, self.cavitation,
-                     annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
+        f = evaluate(self.data, annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
                      annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
 
 
-def closed_form() -> ForceModel:
-    """Lubrication closed forms (2.5)-(2.7)."""
-    return ForceModel("closed-form")
+def _ends(ends: str, length_over_a: float | None) -> dict:
+    """The fields of a force model for the annulus' ends: "infinite" or "open" (needs L/a)."""
+    if ends not in ENDS:
+        msg = f"ends must be one of {', '.join(ENDS)}, got {ends!r}"
+        raise ValueError(msg)
+    if ends == "infinite":
+        return {}
+    if length_over_a is None:
+        msg = "ends = 'open' needs the annulus' length over its inner radius, length_over_a"
+        raise ValueError(msg)
+    from lubrication.finite_length import factor_table
+
+    length_over_a = check_range("length_over_a", length_over_a, 0.0, math.inf, low_open=True)
+    return {"length_over_a": length_over_a, "length_table": factor_table().args}
+
+
+def closed_form(ends: str = "infinite", length_over_a: float | None = None) -> ForceModel:
+    """Lubrication closed forms (2.5)-(2.7); with ``ends = "open"`` times the finite-length factors."""
+    name = "closed-form" if ends == "infinite" else "closed-form/open-ends"
+    return ForceModel(name, **_ends(ends, length_over_a), options={"ends": ends})
 
 
 def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1,
@@ -93,18 +133,24 @@ def reynolds(n: int = 16, grid: str = "sommerfeld", profile: str = "thin", point
     gap = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
     options = {"n": n, "grid": grid, "profile": profile, "points_per_cell": points_per_cell}
     if cavitation == "none":
-        return ForceModel("reynolds", gap, grid == "sommerfeld", rule, points_per_cell, options=options)
+        return ForceModel("reynolds", REYNOLDS, gap, grid == "sommerfeld", rule, points_per_cell, options=options)
     if not p_cav <= p_ref:
         msg = f"p_cav must not exceed p_ref = {p_ref:g} Pa, got {p_cav:g} Pa"
         raise ValueError(msg)
-    return ForceModel(f"reynolds/{cavitation}", gap, grid == "sommerfeld", rule, points_per_cell,
+    return ForceModel(f"reynolds/{cavitation}", CAVITATING, gap, grid == "sommerfeld", rule, points_per_cell,
                       cavitation=(CAVITATION_MODELS.index(cavitation), float(p_cav), float(p_ref)),
                       options={**options, "cavitation": cavitation, "p_cav": p_cav, "p_ref": p_ref})
 
 
-def stokes_exact() -> ForceModel:
-    """The exact 2-D Stokes forces of circular walls (:mod:`lubrication.stokes_exact`), at any delta/a."""
-    return ForceModel("stokes-exact", exact=np.ones(5))
+def stokes_exact(ends: str = "infinite", length_over_a: float | None = None) -> ForceModel:
+    """The exact 2-D Stokes forces of circular walls (:mod:`lubrication.stokes_exact`), at any delta/a.
+
+    With ``ends = "open"`` (and the annulus' L/a) each coefficient is scaled by the
+    thin-gap finite-length factor of :mod:`lubrication.finite_length`: the gap opens
+    into end regions at both ends, which lowers the squeeze and rotation forces.
+    """
+    name = "stokes-exact" if ends == "infinite" else "stokes-exact/open-ends"
+    return ForceModel(name, EXACT, **_ends(ends, length_over_a), options={"ends": ends})
 
 
 def force_model(name: str, **options) -> ForceModel:
@@ -115,46 +161,48 @@ def force_model(name: str, **options) -> ForceModel:
     integrator step, checks them; :mod:`lubrication.stokes`).
     """
     if name == "closed-form":
-        return closed_form()
+        return closed_form(**options)
     if name == "reynolds":
+        if options.get("ends", "infinite") != "infinite":
+            msg = ("ends = 'open' is modelled in trajectories with the closed forms or the exact Stokes forces "
+                   "times the finite-length factors; the Reynolds solver on (theta, z) is for single instants "
+                   "(snail forces --ends open)")
+            raise ValueError(msg)
+        options.pop("ends", None)
         return reynolds(**options)
     if name in ("stokes-exact", "stokes"):
-        if options:
-            msg = f"the {name} forces take no options, got {', '.join(sorted(options))}"
-            raise ValueError(msg)
-        return stokes_exact()
+        return stokes_exact(**options)
     msg = f"forces must be one of {', '.join(FORCE_MODELS)}, got {name!r}"
     raise ValueError(msg)
 
 
 @jit
-def evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, mu, length,
-             kappa, omk, eps_dot, w_a, w_b):
-    """f_eps, f_chi (N) and T_a (N m) of the model whose data are given; see :class:`ForceModel`.
-
-    The exact Stokes forces if ``exact`` is given (scaled coefficient by
-    coefficient), else the closed forms if ``rule`` is None, else the Reynolds
-    film, cavitating if ``cavitation`` is given. The tests are on None, which
-    numba resolves when it compiles.
-    """
-    if exact is not None:
-        r = stokes_exact_resistance(a, b - a, mu, kappa, omk)
-        f_eps = length * exact[0] * r[0] * eps_dot
-        f_chi = length * (exact[1] * r[1] * w_a + exact[3] * r[3] * w_b)
-        t_a = length * (exact[2] * r[2] * w_a + exact[4] * r[4] * w_b)
+def evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of the force model ``model`` (:attr:`ForceModel.data`)."""
+    kind, profile, sommerfeld, rule, points_per_cell, factors, cavitation, length_over_a, table = model
+    if kind == EXACT or kind == CLOSED:
+        if kind == EXACT:
+            r = stokes_exact_resistance(a, b - a, mu, kappa, omk)[:5]
+        else:
+            r = lubrication_resistance(a, b - a, mu, kappa, omk)
+        if math.isinf(length_over_a):
+            ends = (1.0, 1.0, 1.0, 1.0, 1.0)
+        else:
+            ends = finite_length_factor_kernel(kappa, omk, length_over_a, table[0], table[1], table[2], table[3])
+        f_eps = length * factors[0] * ends[0] * r[0] * eps_dot
+        f_chi = length * (factors[1] * ends[1] * r[1] * w_a + factors[3] * ends[3] * r[3] * w_b)
+        t_a = length * (factors[2] * ends[2] * r[2] * w_a + factors[4] * ends[4] * r[4] * w_b)
         return f_eps, f_chi, t_a
-    if rule is None:
-        return lubrication_forces(a, b - a, mu, length, kappa, omk, eps_dot, w_a, w_b)
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
-    if cavitation is not None:
+    if kind == CAVITATING:
         n = spsi.size // points_per_cell
-        model, p_cav, p_ref = cavitation
+        code, p_cav, p_ref = cavitation
         f_eps, f_chi, t_a, _ = _cavitation_kernels.cavitating_film_forces(
             profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
             cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell, none, none, 1.0, 0.0,
-            model, p_cav, p_ref, np.empty(n), np.empty(n), np.empty(n))
+            code, p_cav, p_ref, np.empty(n), np.empty(n), np.empty(n))
         return f_eps, f_chi, t_a
     return _kernels.film_forces(profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b,
                                 kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell,

@@ -48,7 +48,13 @@ from dynamics.equations.forces import ForceModel, evaluate
 from lubrication._jit import jit
 
 __all__ = [
+    "EVENT_NAMES",
+    "FRAME_TERMS",
+    "frame_force",
     "STATE_NAMES",
+    "events",
+    "reduced_reynolds",
+    "run_args",
     "force_response",
     "gravity_response",
     "initial_state",
@@ -61,14 +67,49 @@ __all__ = [
 STATE_NAMES = ("u_x", "u_z", "v_x", "v_z", "omega_a", "omega_b", "x_b")
 
 # indices into the parameter array built by params_array
-_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS = range(12)
+_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME = range(13)
+
+#: How the equations treat the fluid's inertia in the frame of the line of centres: "paper" is
+#: (2.1)-(2.2) as printed, m_eff on every term of r''; "quasi-steady" carries m'_a instead of
+#: m_eff on the centripetal and Coriolis terms (:func:`frame_force`).
+FRAME_TERMS = ("paper", "quasi-steady")
 
 
-def params_array(apparatus) -> np.ndarray:
+def params_array(apparatus, frame_terms: str = "paper") -> np.ndarray:
     """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
+    if frame_terms not in FRAME_TERMS:
+        msg = f"frame_terms must be one of {', '.join(FRAME_TERMS)}, got {frame_terms!r}"
+        raise ValueError(msg)
     ap = apparatus
     return np.array([ap.a, ap.b, ap.length, ap.mu, ap.m_eff, ap.m_a_reduced, ap.M, ap.m_b, ap.m_a,
-                     ap.g, math.sin(ap.alpha), math.cos(ap.alpha)])
+                     ap.g, math.sin(ap.alpha), math.cos(ap.alpha), float(frame_terms == "quasi-steady")])
+
+
+@jit(inline="always")
+def frame_force(p, eps, eps_dot, chi_dot):
+    """(f_eps, f_chi) that (2.1)-(2.2) leave out when the fluid turns with the line of centres (N).
+
+    In the frame turning with the line of centres at chi', the centrifugal and
+    Coriolis forces of a plane flow are gradients (2 Omega z x u = 2 Omega grad psi),
+    so they only shift the pressure: the velocity field, hence the viscous force,
+    is that of the relative motion, and the pressure shift pushes the inner
+    cylinder with -m''_a chi'^2 eps e_eps + 2 m''_a chi' eps' e_chi (a buoyancy in
+    the centrifugal field). A fluid in rigid rotation about B with the inner
+    cylinder at rest in it makes the point exactly: it needs the force m'_a eps chi'^2
+    towards B, which (2.2) as printed writes m_eff eps chi'^2. Carrying m'_a
+    instead of m_eff on the centripetal and Coriolis terms is adding
+    (m_eff - m'_a)(-eps chi'^2 e_eps + 2 eps' chi' e_chi). The frame argument needs
+    a line of centres that turns steadily: the force is faded out where the
+    centres nearly coincide (kappa ~ 0.05), where chi' is not a frame rate.
+    Zero unless the parameters ask for it (``frame_terms = "quasi-steady"``).
+    """
+    if p[_FRAME] == 0.0:
+        return 0.0, 0.0
+    delta = p[_B] - p[_A]
+    kappa = eps / delta
+    fade = kappa * kappa / (kappa * kappa + 0.0025)
+    extra = fade * (p[_MEFF] - p[_MRED])
+    return -extra * eps * chi_dot * chi_dot, 2.0 * extra * eps_dot * chi_dot
 
 
 @jit(inline="always")
@@ -116,16 +157,20 @@ def gravity_response(p):
 
 
 @jit
-def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation):
-    """dy/dt of the full model; ``p`` from :func:`params_array`, the model from a ForceModel."""
+def rhs(t, y, args):
+    """dy/dt of the full model; ``args`` from :func:`run_args` (the parameters, then the force model's data)."""
+    p, model = args[0], args[1]
     a, b = p[_A], p[_B]
     delta = b - a
     kappa, omk, zeta, eps, big_u, ex, ez = _geometry(y, delta)
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
     eps_dot = ex * vx + ez * vz
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
-    f_eps, f_chi, t_a = evaluate(profile, sommerfeld, rule, points_per_cell, exact, cavitation, a, b, p[_MU],
-                                 p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot, omega_b - chi_dot)
+    f_eps, f_chi, t_a = evaluate(model, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
+                                 omega_b - chi_dot)
+    frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot)
+    f_eps += frame_eps
+    f_chi += frame_chi
     fluid = force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
     gravity = gravity_response(p)
     dy = np.empty(7)
@@ -140,38 +185,108 @@ def rhs(t, y, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation):
 
 
 @jit
-def jacobian(t, y, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation, typical):
+def jacobian(t, y, args):
     """d(rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
     balanced at h ~ eps^(1/3) |y|: about 1e-11 relative, far below what the
     implicit integrator's Newton iteration needs.
     """
+    typical = args[2]
     n = y.size
     jac = np.empty((n, n))
     yp = y.copy()
     for j in range(n):
         h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
         yp[j] = y[j] + h
-        up = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation)
+        up = rhs(t, yp, args)
         yp[j] = y[j] - h
-        down = rhs(t, yp, p, profile, sommerfeld, rule, points_per_cell, exact, cavitation)
+        down = rhs(t, yp, args)
         yp[j] = y[j]
         for i in range(n):
             jac[i, j] = (up[i] - down[i]) / (2.0 * h)
     return jac
 
 
-def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b) -> np.ndarray:
+#: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
+#: the validity limits, the line of centres crossing an axis (u_x u_z = 0: every quarter turn, which
+#: keeps chi continuous between output rows), and the touch of rough walls (kappa = kappa*).
+EVENT_NAMES = ("gap_floor", "reynolds", "runaway", "turn", "touch")
+
+# entries of the events' parameter array (args[3])
+_LOG_FLOOR, _MAX_RE, _RE_A, _RE_B, _XB_LIMIT, _XB0, _U_STAR = range(7)
+
+
+@jit(inline="always")
+def reduced_reynolds(y, args):
+    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of state ``y``.
+
+    The Reynolds number of the flow relative to the line of centres, which
+    measures the error of quasi-steady Stokes forces (:mod:`lubrication.inertia`:
+    the frame's rotation only shifts the pressure of a plane flow). Where the line
+    of centres is undefined (kappa -> 0) chi' is not, and Re* is faded out over
+    kappa ~ 1e-3.
+    """
+    p, ev = args[0], args[3]
+    delta = p[_B] - p[_A]
+    big_u = math.hypot(y[0], y[1])
+    kappa = big_u / math.sqrt(1.0 + big_u * big_u)
+    if big_u == 0.0:
+        return 0.0
+    ex, ez = y[0] / big_u, y[1] / big_u
+    chi_dot = (ez * y[2] - ex * y[3]) / (kappa * delta)
+    fade = kappa * kappa / (kappa * kappa + 1e-6)
+    return fade * max(abs(y[4] - chi_dot) * ev[_RE_A], abs(y[5] - chi_dot) * ev[_RE_B])
+
+
+@jit
+def events(t, y, args):
+    """The event values of :data:`EVENT_NAMES`; each fires as it falls through (or rises to) 0."""
+    ev = args[3]
+    big_u = math.hypot(y[0], y[1])
+    one_plus = 1.0 + big_u * big_u
+    kappa = big_u / math.sqrt(one_plus)
+    omk = 1.0 / (one_plus * (1.0 + kappa))
+    g = np.empty(5)
+    g[0] = math.log(omk) - ev[_LOG_FLOOR]
+    g[1] = ev[_MAX_RE] - reduced_reynolds(y, args)
+    g[2] = ev[_XB_LIMIT] - abs(y[6] - ev[_XB0])
+    g[3] = y[0] * y[1]
+    g[4] = big_u - ev[_U_STAR]
+    return g
+
+
+def run_args(apparatus, force_model: ForceModel, *, gap_floor: float, max_reynolds: float = math.inf,
+             max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
+             frame_terms: str = "paper") -> tuple:
+    """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events` for a run.
+
+    (parameters, force model data, typical scales, event parameters): the gap-floor
+    event at 1 - kappa = ``gap_floor``, the Reynolds event at ``max_reynolds``, the
+    runaway event after ``max_turns`` turns of the outer cylinder from ``x_b0`` (m),
+    the touch event at ``kappa_star`` (1: none); ``frame_terms`` (:data:`FRAME_TERMS`).
+    """
+    ap = apparatus
+    u_star = math.inf if kappa_star >= 1.0 else kappa_star / math.sqrt((1.0 - kappa_star) * (1.0 + kappa_star))
+    per_rate = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed: (dynamics.equations.full.reduced_reynolds)
+    ev = np.array([math.log(gap_floor), max_reynolds, per_rate * ap.a, per_rate * ap.b,
+                   2.0 * math.pi * ap.b * max_turns, x_b0, u_star])
+    return (params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev)
+
+
+def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b, *,
+                  one_minus_kappa: float | None = None) -> np.ndarray:
     """State vector from (kappa, phi, kappa', phi', Omega_a, Omega_b) in SI units.
 
     phi = alpha + chi is measured from the upward vertical; chi' = phi'.
+    ``one_minus_kappa``, when given, carries the gap to full precision near contact.
     """
     delta = apparatus.delta
+    omk = 1.0 - kappa if one_minus_kappa is None else one_minus_kappa
     chi = phi - apparatus.alpha
     e_eps = np.array([math.sin(chi), math.cos(chi)])
     e_chi = np.array([math.cos(chi), -math.sin(chi)])
-    zeta = math.sqrt((1.0 - kappa) * (1.0 + kappa))
+    zeta = math.sqrt(omk * (1.0 + kappa))
     u = (kappa / zeta) * e_eps
     v = delta * (kappa_dot * e_eps + kappa * phi_dot * e_chi)
     return np.array([u[0], u[1], v[0], v[1], omega_a, omega_b, 0.0])
@@ -184,21 +299,31 @@ def typical_scales(apparatus) -> np.ndarray:
                      apparatus.b])
 
 
-def observables(apparatus, y: np.ndarray) -> dict[str, np.ndarray]:
-    """kappa, 1 - kappa, eps, chi, phi, Omega_a, Omega_b, X_b from states y (shape (7, n)).
+def observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
+    """kappa, 1 - kappa, eps, chi, phi, kappa', phi', Omega_a, Omega_b, X_b from states y (shape (7, n)).
 
-    chi is unwrapped to be continuous from sample to sample.
+    chi is unwrapped to be continuous between rows (the rows must include the
+    quarter-turn "turn" events, for that to hold whatever the spacing) and phi starts at the turn of ``phi0``. kappa' = e_eps . r'/delta and
+    phi' = chi' = (e_chi . r')/eps (0 at eps = 0, where the direction is undefined).
     """
     big_u = np.hypot(y[0], y[1])
     one_plus = 1.0 + big_u**2
     kappa = big_u / np.sqrt(one_plus)
     chi = np.unwrap(np.arctan2(y[0], y[1]))
+    if chi.size:
+        chi += 2.0 * math.pi * round((phi0 - apparatus.alpha - chi[0]) / (2.0 * math.pi))
+    eps = kappa * apparatus.delta
+    ex, ez = np.sin(chi), np.cos(chi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        chi_dot = np.where(eps > 0.0, (ez * y[2] - ex * y[3]) / eps, 0.0)
     return {
         "kappa": kappa,
         "one_minus_kappa": 1.0 / (one_plus * (1.0 + kappa)),
-        "eps": kappa * apparatus.delta,
+        "eps": eps,
         "chi": chi,
         "phi": chi + apparatus.alpha,
+        "kappa_dot": (ex * y[2] + ez * y[3]) / apparatus.delta,
+        "phi_dot": chi_dot,
         "omega_a": y[4],
         "omega_b": y[5],
         "x_b": y[6],
@@ -206,6 +331,5 @@ def observables(apparatus, y: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def model_arguments(force_model: ForceModel) -> tuple:
-    """The trailing arguments of :func:`rhs` and :func:`jacobian` that select the force model."""
-    return (force_model.profile, force_model.sommerfeld, force_model.rule,
-            force_model.points_per_cell, force_model.exact, force_model.cavitation)
+    """The force model's data as :func:`rhs` takes them (``args[1]``)."""
+    return force_model.data

@@ -52,7 +52,7 @@ Hence the system integrated here, smooth everywhere including r = 0:
 
 The coupling D rho/(3 Upsilon) that locks Omega_a to Omega_b grows like
 1/zeta near contact: the system is stiff there, and is integrated with an
-implicit method (Radau by default) and the analytic Jacobian
+implicit method (the compiled Radau IIA by default) and the analytic Jacobian
 :func:`reduced_jacobian`.
 """
 
@@ -63,26 +63,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dynamics.equations.limits import (
-    GAP_FLOOR,
-    MAX_TURNS,
-    gap_floor_event,
-    runaway_event,
-)
-from dynamics.integrate import integrate
 from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
 
 __all__ = [
+    "EVENT_NAMES",
     "ReducedParams",
-    "jacobian",
-    "rhs",
-    "ReducedTrajectory",
     "STATE_NAMES",
+    "columns",
+    "events",
+    "polar_rates",
     "initial_state",
+    "jacobian",
     "reduced_jacobian",
     "reduced_rhs",
-    "simulate_reduced",
+    "rhs",
+    "run_args",
     "stretched_to_kappa",
 ]
 
@@ -117,9 +113,12 @@ class ReducedParams:
                                                          low_open=True))
 
     @property
-    def args(self) -> tuple[float, float, float]:
-        """(s, Upsilon, mu_): the groups as the compiled right-hand side takes them."""
-        return (self.s, self.upsilon, self.mu_ratio)
+    def args(self) -> np.ndarray:
+        """(s, Upsilon, mu_): the groups as the compiled right-hand side takes them.
+
+        Every model's ``args`` is a float64 array, so that one compiled integrator serves them all.
+        """
+        return np.array([self.s, self.upsilon, self.mu_ratio])
 
 
 def stretched_to_kappa(r):
@@ -183,9 +182,9 @@ def rhs(t, y, args):
         Time in units of tau (the system is autonomous).
     y : ndarray, shape (5,)
         State (xi, eta, Omega_a, Omega_b, X_b), see :data:`STATE_NAMES`.
-    args : tuple
+    args : ndarray
         (s, Upsilon, mu_, ...): :meth:`ReducedParams.args` and what the run's
-        events need after them.
+        events need after them (:func:`run_args`).
 
     Returns
     -------
@@ -253,125 +252,102 @@ def reduced_jacobian(t: float, y, params: ReducedParams) -> np.ndarray:
     return jacobian(float(t), np.asarray(y, dtype=float), params.args)
 
 
-@dataclass(frozen=True)
-class ReducedTrajectory:
-    """A solution of the reduced model; times in tau, rates in 1/tau, x_b in b.
+#: The components of :func:`events`, in order: the validity limits, the line of centres
+#: crossing an axis (xi eta = 0: every quarter turn, which keeps phi continuous between output
+#: rows however far apart, since consecutive rows are then less than a half turn apart), and
+#: the touch of rough walls (r = r*, contact runs only).
+EVENT_NAMES = ("gap_floor", "reynolds", "runaway", "turn", "touch")
 
-    Attributes
-    ----------
-    t : ndarray, shape (n,)
-    kappa, one_minus_kappa : ndarray, shape (n,)
-        Eccentricity and its distance from contact (no cancellation).
-    phi : ndarray, shape (n,)
-        Angle of the line of centres from the upward vertical, unwrapped to be
-        continuous between samples (samples must be closer than half a turn)
-        and starting near the requested phi0. Where kappa = 0 exactly the
-        direction is undefined and phi0 is reported.
-    omega_a, omega_b, x_b : ndarray, shape (n,)
-    status : int
-        0 reached ``t_end``; 1 stopped by an event; -1 integration failed or was interrupted.
-    stop_reason : str
-        ``"t_end"``, ``"gap_floor"`` (1 - kappa fell to the floor),
-        ``"runaway"`` (the outer cylinder rolled ``max_turns`` turns),
-        ``"max_steps"``, ``"failed"`` or ``"interrupted"``.
-    message : str
-        Human-readable account of the stop.
-    nfev, njev, steps : int
-        Right-hand-side and Jacobian evaluations, accepted steps.
-    wall_time_s : float
-    """
-
-    t: np.ndarray
-    kappa: np.ndarray
-    one_minus_kappa: np.ndarray
-    phi: np.ndarray
-    omega_a: np.ndarray
-    omega_b: np.ndarray
-    x_b: np.ndarray
-    status: int
-    stop_reason: str
-    message: str
-    nfev: int
-    njev: int
-    steps: int = 0
-    wall_time_s: float = 0.0
+# args of a run: the groups, then what the events need
+_LOG_FLOOR, _MAX_RE, _RE_A, _RE_B, _XB_LIMIT, _XB0, _R_STAR = range(3, 10)
 
 
-def simulate_reduced(params: ReducedParams, t_end: float, kappa0: float, phi0: float,
-                     omega_a0: float = 0.0, omega_b0: float = 0.0, x_b0: float = 0.0, *,
-                     one_minus_kappa0: float | None = None, t_eval=None,
-                     rtol: float = 1e-8, atol: float = 1e-10, method: str = "LSODA",
-                     gap_floor: float = GAP_FLOOR, max_turns: float = MAX_TURNS,
-                     progress: str | None = None) -> ReducedTrajectory:
-    """Integrate the reduced model (2.11) from t = 0 to ``t_end`` (units of tau).
+def run_args(params: ReducedParams, *, gap_floor: float, max_reynolds: float = math.inf,
+             reynolds_per_rate: tuple[float, float] = (0.0, 0.0), x_b_limit: float = math.inf,
+             x_b0: float = 0.0, r_star: float = math.inf) -> np.ndarray:
+    """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events` for a run.
 
     Parameters
     ----------
-    params : ReducedParams
-    t_end : float
-        Final time in units of tau, positive.
-    kappa0, phi0, omega_a0, omega_b0, x_b0, one_minus_kappa0
-        Initial state, see :func:`initial_state`.
-    t_eval : array_like, optional
-        Output times in [0, t_end]; by default the integrator's steps. The
-        state at a terminating event is appended.
-    rtol, atol : float
-        Integrator tolerances, applied to (xi, eta, Omega_a, Omega_b, X_b).
-    method : {"Radau", "BDF", "LSODA"}
-        Implicit scipy solver; the analytic Jacobian is supplied.
     gap_floor : float
-        Stop when 1 - kappa falls to this value, in (0, 1); see
-        :mod:`dynamics.equations.limits`. The slow approach (3.9) reaches it after
-        about 1/sqrt(2 gap_floor (1 - s^2)) tau.
-    max_turns : float
-        Stop, as a runaway, when the outer cylinder has turned this many times
-        (|X_b - x_b0| = 2 pi max_turns), which bounds the cost of long runs.
-    progress : str, optional
-        Label of a progress bar shown on a terminal.
-
-    Returns
-    -------
-    ReducedTrajectory
-
-    Raises
-    ------
-    ValueError
-        For out-of-range arguments, including an initial gap already at or
-        below ``gap_floor``.
+        1 - kappa at which the gap-floor event fires.
+    max_reynolds : float
+        Reduced Reynolds number Re* of the Reynolds event; ``reynolds_per_rate`` =
+        (1, b/a) delta^2/(nu tau) turns the scaled relative rates W = Omega - phi' into it
+        (zero without an apparatus).
+    x_b_limit, x_b0 : float
+        The runaway event fires when |X_b - x_b0| reaches ``x_b_limit`` (units of b).
+    r_star : float
+        Stretched radius kappa*/zeta* of the touch event (inf without contact).
     """
-    t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True)
-    gap_floor = check_range("gap_floor", gap_floor, 0.0, 1.0, low_open=True)
-    max_turns = check_range("max_turns", max_turns, 0.0, math.inf, low_open=True)
-    check_range("rtol", rtol, 0.0, 1.0, low_open=True)
-    check_range("atol", atol, 0.0, math.inf, low_open=True)
-    if method not in ("Radau", "BDF", "LSODA"):
-        msg = f"method must be one of 'Radau', 'BDF', 'LSODA', got {method!r}"
-        raise ValueError(msg)
-    y0 = initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0, one_minus_kappa0=one_minus_kappa0)
-    _, omk0 = stretched_to_kappa(math.hypot(y0[0], y0[1]))
-    if not omk0 > gap_floor:
-        msg = f"1 - kappa0 must be in (gap_floor, 1] = ({gap_floor:g}, 1], got {omk0!r}"
-        raise ValueError(msg)
-    if t_eval is not None:
-        t_eval = np.asarray(t_eval, dtype=float)
-        if t_eval.ndim != 1 or np.any(t_eval < 0.0) or np.any(t_eval > t_end) or np.any(np.diff(t_eval) <= 0):
-            msg = "t_eval must be a 1-D increasing array of times in [0, t_end]"
-            raise ValueError(msg)
-    events = (gap_floor_event(lambda y: stretched_to_kappa(math.hypot(y[0], y[1]))[1], gap_floor),
-              runaway_event(lambda y: y[4] - x_b0, max_turns))
-    run = integrate(lambda t, y: reduced_rhs(t, y, params), y0, t_end,
-                    jac=lambda t, y: reduced_jacobian(t, y, params), rtol=rtol, atol=atol,
-                    method=method, events=events, t_eval=t_eval, progress=progress)
-    status = {"completed": 0, "stopped": 1}.get(run.status, -1)
-    stop_reason = {"completed": "t_end", "stopped": run.event}.get(run.status, run.status)
-    t, y = run.t, run.y
+    return np.array([*params.args, math.log(gap_floor), max_reynolds, reynolds_per_rate[0],
+                     reynolds_per_rate[1], x_b_limit, x_b0, r_star], dtype=float)
+
+
+@jit
+def events(t, y, args):
+    """The event values of :data:`EVENT_NAMES` at state ``y``; each fires as it falls through (or rises to) 0."""
+    r = math.hypot(y[0], y[1])
+    rho = math.sqrt(1.0 + r * r)
+    omk = 1.0 / (rho * (rho + r))
+    g = np.empty(5)
+    g[0] = math.log(omk) - args[_LOG_FLOOR]
+    if args[_MAX_RE] < math.inf and r > 0.0:
+        # Re* of the flow relative to the line of centres (dynamics.equations.full.reduced_reynolds)
+        f = rhs(t, y, args)
+        phi_dot = (y[1] * f[0] - y[0] * f[1]) / (r * r)
+        kappa = r / rho
+        fade = kappa * kappa / (kappa * kappa + 1e-6)
+        g[1] = args[_MAX_RE] - fade * max(abs(y[2] - phi_dot) * args[_RE_A], abs(y[3] - phi_dot) * args[_RE_B])
+    else:
+        g[1] = args[_MAX_RE]
+    g[2] = args[_XB_LIMIT] - abs(y[4] - args[_XB0])
+    g[3] = y[0] * y[1]
+    g[4] = r - args[_R_STAR]
+    return g
+
+
+@jit
+def polar_rates(y, args):
+    """kappa' and phi' (1/tau) of states ``y`` (shape (5, k)), from the right-hand side.
+
+    r' = kappa'/zeta^3 and r^2 phi' = eta xi' - xi eta' (module docstring); at r = 0,
+    where phi is undefined, phi' is reported as 0 and kappa' = |(xi', eta')|.
+    """
+    k = y.shape[1]
+    kappa_dot = np.empty(k)
+    phi_dot = np.empty(k)
+    state = np.empty(5)
+    for j in range(k):
+        for i in range(5):
+            state[i] = y[i, j]
+        f = rhs(0.0, state, args)
+        xi, eta = state[0], state[1]
+        r2 = xi * xi + eta * eta
+        if r2 > 0.0:
+            zeta3 = (1.0 + r2) ** -1.5
+            kappa_dot[j] = (xi * f[0] + eta * f[1]) / math.sqrt(r2) * zeta3
+            phi_dot[j] = (eta * f[0] - xi * f[1]) / r2
+        else:
+            kappa_dot[j] = math.hypot(f[0], f[1])
+            phi_dot[j] = 0.0
+    return kappa_dot, phi_dot
+
+
+def columns(y: np.ndarray, phi0: float, args: np.ndarray) -> dict[str, np.ndarray]:
+    """kappa, 1 - kappa, phi, their rates, Omega_a, Omega_b, X_b of states ``y`` (shape (5, k)), scaled units.
+
+    phi is unwrapped to be continuous between rows (the rows must include the
+    quarter-turn "turn" events, for that to hold whatever the spacing)
+    and starts at the turn of ``phi0``; where kappa = 0 exactly phi is undefined
+    and ``phi0`` is reported. ``args`` are the run's (:func:`run_args`).
+    """
     r = np.hypot(y[0], y[1])
     kappa, omk = stretched_to_kappa(r)
     phi = np.where(r > 0.0, np.arctan2(y[0], y[1]), phi0)
     if phi.size:
         phi = np.unwrap(phi)
         phi += 2.0 * math.pi * round((phi0 - phi[0]) / (2.0 * math.pi))
-    return ReducedTrajectory(t=t, kappa=kappa, one_minus_kappa=omk, phi=phi, omega_a=y[2],
-                             omega_b=y[3], x_b=y[4], status=status, stop_reason=stop_reason,
-                             message=run.reason, nfev=run.nfev, njev=run.njev, steps=run.steps,
-                             wall_time_s=run.wall_time_s)
+    kappa_dot, phi_dot = polar_rates(np.ascontiguousarray(y[:5]), args)
+    return {"kappa": kappa, "one_minus_kappa": omk, "phi": phi, "kappa_dot": kappa_dot, "phi_dot": phi_dot,
+            "omega_a": y[2], "omega_b": y[3], "x_b": y[4]}

@@ -352,16 +352,25 @@ def _cavitation(raw: Mapping[str, Any]) -> Cavitation | None:
 
 def _run(raw: Mapping[str, Any], apparatus: Apparatus | None) -> Run:
     values = _read(raw, "run")
-    given = _either(values, "run", "t_end", "t_end_tau", required="a scene says how long to run")
-    if apparatus is None:
-        if given == "t_end":
-            msg = (f"run.t_end is in seconds, but this [groups] scene for the reduced model is "
-                   f"dimensionless (no apparatus, times in tau): give run.t_end_tau "
-                   f"{spec('run.t_end_tau').allowed()}; got run.t_end = {raw['run']['t_end']!r}")
-            raise SceneError(msg)
-        values["t_end"] = values.pop("t_end_tau")
-    elif given == "t_end_tau":
-        values["t_end"] = values.pop("t_end_tau") * apparatus.tau
+    _either(values, "run", "t_end", "t_end_tau", required="a scene says how long to run")
+    _either(values, "run", "output_interval", "output_interval_tau")
+    for name in ("t_end", "output_interval"):
+        in_tau = f"{name}_tau"
+        if apparatus is None:
+            if name in values:
+                msg = (f"run.{name} is in seconds, but this [groups] scene for the reduced model is "
+                       f"dimensionless (no apparatus, times in tau): give run.{in_tau} "
+                       f"{spec(f'run.{in_tau}').allowed()}; got run.{name} = {raw['run'][name]!r}")
+                raise SceneError(msg)
+            if in_tau in values:
+                values[name] = values.pop(in_tau)
+        elif in_tau in values:
+            values[name] = values.pop(in_tau) * apparatus.tau
+    if values.get("output_interval") is not None and values["output_interval"] > values["t_end"]:
+        unit = "tau" if apparatus is None else "s"
+        msg = (f"run.output_interval must be in (0, run.t_end] = (0, {values['t_end']:g}] {unit}, "
+               f"got {values['output_interval']:g} {unit}")
+        raise SceneError(msg)
     return Run(**values)
 
 
@@ -510,8 +519,12 @@ def resolved_toml(scene: Scene) -> str:
         sections["contact"] = {k: v for k, v in contact.items() if v is not None}  # TOML has no null
     if scene.cavitation is not None:
         sections["cavitation"] = dataclasses.asdict(scene.cavitation)
-    t_end = "t_end_tau" if scene.dimensionless else "t_end"
-    sections["run"] = {t_end: scene.run.t_end, "rtol": scene.run.rtol}
+    suffix = "_tau" if scene.dimensionless else ""
+    run = scene.run
+    sections["run"] = {f"t_end{suffix}": run.t_end, "rtol": run.rtol}
+    if run.output_interval is not None:
+        sections["run"][f"output_interval{suffix}"] = run.output_interval
+    sections["run"].update(gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds, on_invalid=run.on_invalid)
     units = ("dimensionless: times in tau, rates in 1/tau, lengths in b" if scene.dimensionless
              else "SI units, angles in rad")
     lines = [f"# Scene {json.dumps(scene.source)}, fully resolved ({units})."]
@@ -519,6 +532,7 @@ def resolved_toml(scene: Scene) -> str:
         lines += ["", f"[{name}]"]
         for key_name, value in table.items():
             rule = SECTIONS[name][key_name]
+            value = rule.none if value is None else value
             unit = rule.reduced_unit if scene.dimensionless and rule.reduced_unit else rule.unit
             unit = "rad" if rule.scale != 1.0 else unit  # angles are written in radians
             note = f"  # {rule.help}" + (f" ({unit})" if unit else "")

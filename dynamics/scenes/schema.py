@@ -17,6 +17,9 @@ import math
 from dataclasses import dataclass, field
 
 from dynamics.apparatus import PRESETS, Apparatus
+from dynamics.equations.forces import ENDS
+from dynamics.equations.full import FRAME_TERMS
+from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.keys import Key, check_fields, field_key, key
@@ -47,6 +50,12 @@ CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
 
 _DEG = math.pi / 180.0
 _FRICTION = {"unit": "deg", "low": 0.0, "high": 90.0, "bounds": "[)", "scale": _DEG, "example": "5 deg"}
+
+
+def _limit(name: str):
+    """A field of Limits, with its default and its key, repeated in the run section."""
+    f = Limits.__dataclass_fields__[name]
+    return dataclasses.field(default=f.default, metadata=f.metadata)
 
 
 class SceneError(ValueError):
@@ -94,6 +103,12 @@ class Model:
                  low=MIN_CELLS, high=MAX_CELLS, integer=True)
     grid: str = key("sommerfeld", help="Reynolds solver: grid uniform in the Sommerfeld angle or in theta",
                     choices=GRIDS)
+    ends: str = key("infinite", help="'infinite': per unit length of an infinitely long annulus; 'open': the gap "
+                                     "opens into end regions at z = +-L/2 (finite-length factors on the closed "
+                                     "forms or the exact Stokes forces)", choices=ENDS)
+    frame_terms: str = key("paper", help="full equations: 'paper' is (2.1)-(2.2) as printed; 'quasi-steady' "
+                                         "carries m'_a, not m_eff, on the centripetal and Coriolis terms, as a "
+                                         "fluid turning with the line of centres requires", choices=FRAME_TERMS)
 
     def __post_init__(self):
         check_fields(self)
@@ -140,14 +155,25 @@ class Cavitation:
 
 @dataclass(frozen=True)
 class Run:
-    """How long to integrate and how accurately."""
+    """How long to integrate, how accurately, what to output, and what to do at the validity limits."""
 
     t_end: float = key(help="duration (in units of tau in a dimensionless scene)", dimension="[time]", unit="s",
                        low=0.0, bounds="()", example="30 s")
     rtol: float = key(1e-8, help="relative tolerance of the integrator", low=0.0, high=0.1, bounds="(]")
+    output_interval: float | None = key(None, help="rows of trajectory.csv at this interval (and at every event); "
+                                        "'none': one row per integrator step", dimension="[time]", unit="s",
+                                        low=0.0, bounds="()", example="0.1 s", reduced_unit="tau", none="none")
+    gap_floor: float = _limit("gap_floor")
+    max_gap_reynolds: float | None = _limit("max_gap_reynolds")
+    on_invalid: str = _limit("on_invalid")
 
     def __post_init__(self):
         check_fields(self)
+
+    @property
+    def limits(self) -> Limits:
+        """The validity limits of :mod:`dynamics.equations.limits` this run asks for."""
+        return Limits(gap_floor=self.gap_floor, max_gap_reynolds=self.max_gap_reynolds, on_invalid=self.on_invalid)
 
 
 @dataclass(frozen=True)
@@ -217,11 +243,14 @@ ALTERNATIVE_KEYS: dict[tuple[str, str], Key] = {
     ("contact", "friction_angle"): Key(help="physical friction angle psi_hat, instead of psi", **_FRICTION),
     ("run", "t_end_tau"): Key(help="duration in units of tau, instead of t_end", unit="tau", low=0.0,
                               bounds="()"),
+    ("run", "output_interval_tau"): Key(help="output interval in units of tau, instead of output_interval",
+                                        unit="tau", low=0.0, bounds="()"),
 }
 
 #: Pairs of keys that say the same thing: a scene gives one, and an override of one replaces the other.
 ALTERNATIVES = (("apparatus", "m_a", "rho_a"), ("contact", "sigma", "kappa_star"),
-                ("contact", "friction_angle", "psi"), ("run", "t_end", "t_end_tau"))
+                ("contact", "friction_angle", "psi"), ("run", "t_end", "t_end_tau"),
+                ("run", "output_interval", "output_interval_tau"))
 
 _SECTION_CLASSES = {"groups": Groups, "initial": Initial, "model": Model, "contact": Contact,
                     "cavitation": Cavitation, "run": Run}

@@ -1,7 +1,10 @@
 """Quantities with units in scenes, read by pint; the registry is built on first use.
 
-Building pint's registry takes about a second, which a run given only plain SI
-numbers should not pay, so it is created when the first string with units is read.
+Importing pint and building its registry takes about a second, which a run given
+only plain SI numbers should not pay, so both happen when the first string with
+units is read; pint keeps its parsed definitions in the project's cache folder
+(:func:`lubrication.files.cache_folder`), which cuts the registry's build from
+0.45 s to 0.1 s after the first time.
 """
 
 from __future__ import annotations
@@ -20,9 +23,11 @@ class UnitError(ValueError):
 def _registry():
     import pint
 
+    from lubrication.files import cache_folder
+
     # Decimal magnitudes: decimal unit factors (cSt, g/cm^3) convert exactly, where
     # binary floats would give 200 cSt = 2.0000000000000004e-4 m^2/s.
-    return pint.UnitRegistry(non_int_type=Decimal)
+    return pint.UnitRegistry(non_int_type=Decimal, cache_folder=cache_folder() / "pint")
 
 
 def to_si(text: str, dimension: str) -> float:

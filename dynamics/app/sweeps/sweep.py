@@ -435,7 +435,7 @@ def run_point(base: Mapping[str, Any], point: Mapping[str, Any], source: str = "
         trajectory = run_scene(parse_scene(base, source, overrides(point)))
         regime, numbers = classify_point(trajectory)
         row.update(numbers, status=trajectory.status, regime=regime, steps=trajectory.steps,
-                   reason=trajectory.reason if regime == "failed" else "")
+                   reason=trajectory.message if regime == "failed" else "")
     # A point fails alone: any error is its reason, and the sweep goes on.
     except Exception as err:  # noqa: BLE001
         row.update(status="failed", regime="failed", reason=f"{type(err).__name__}: {err}")
