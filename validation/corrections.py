@@ -258,7 +258,7 @@ def to_json(result: dict, checks: list[Check]) -> dict:
                          for i_, d in enumerate(result["deltas"])},
         "reynolds_eccentric_ratio": {f"{d:.10g}": per_name(result["reynolds"][i_])
                                      for i_, d in enumerate(result["deltas"])},
-        "thin_gap_coefficient": {"fit_delta_over_a": list(THIN),
+        "thin_gap_coefficient": {"fit_delta_over_a": {"stokes": list(EXACT_THIN), "reynolds_eccentric": list(THIN)},
                                  "stokes": per_name(result["c_stokes"]),
                                  "reynolds_eccentric": per_name(result["c_reynolds"])},
         "apparatus": {**APPARATUS, "ratio": headline},
@@ -352,9 +352,8 @@ def register(subparsers) -> None:
         description="Ratio of the full-Stokes and the exact-gap Reynolds resistance coefficients to "
                     "the lubrication forms (2.5)-(2.7) against kappa for delta/a from 0.01 to 1, the "
                     "thin-gap correction coefficients and the paper's apparatus. Writes "
-                    "corrections.csv, corrections.json and corrections.png. Stokes tables are cached "
-                    "in $SNAIL_CACHE (default ~/.cache/snail-cylinder).")
+                    "corrections.csv, corrections.json and corrections.png.")
     p.add_argument("-o", "--output", default="corrections", help="output folder (default corrections)")
     p.add_argument("--quick", action="store_true",
-                   help="coarse tables built in memory and the four gaps the checks need")
+                   help="only the four gaps the checks need and one finite-element case")
     p.set_defaults(run=corrections_command)

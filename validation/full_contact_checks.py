@@ -21,8 +21,8 @@ The full model carries contact as a unilateral constraint with Coulomb friction
 The paper's apparatus. Section 6 applies (6.1) to the steel cylinder at
 delta/a = 0.41. The full model with contact there (500 cSt, 2.4 degrees,
 sigma = 50 micrometres, the smooth cylinder of Table 3) rolls at its own
-steady speed, reported against (6.1) with closed-form and with Stokes-table
-forces; that ratio is the finite-gap correction to the speed law.
+steady speed, reported against (6.1) with closed-form and with the exact
+Stokes forces; that ratio is the finite-gap correction to the speed law.
 """
 
 from __future__ import annotations
@@ -37,9 +37,10 @@ from dynamics.apparatus import Apparatus, preset
 from dynamics.contact.full import steady_full_contact
 from dynamics.contact.reduced import LOCKED, ContactParams
 from dynamics.contact.steady import steady_state
-from dynamics.equations.forces import closed_form, force_model
-from dynamics.scenes import Initial
-from dynamics.simulate import Trajectory, simulate_full_contact
+from dynamics.equations.forces import closed_form, stokes_exact
+from dynamics.equations.reduced import ReducedParams
+from dynamics.initial import Initial
+from dynamics.simulation import Trajectory, simulate
 from lubrication.files import save_figure
 
 from .checks import Check, absolute, at_least, at_most, relative
@@ -89,8 +90,8 @@ def limit_errors(psi: float) -> list[float]:
 
 def release(psi: float, delta_over_a: float = RATIOS[0], t_end_tau: float = T_END_TAU) -> Trajectory:
     ap = device(delta_over_a)
-    return simulate_full_contact(ap, closed_form(), ContactParams(KAPPA_STAR, psi), RELEASE, t_end_tau * ap.tau,
-                                 rtol=RTOL)
+    return simulate(ap, RELEASE, t_end_tau * ap.tau, forces=closed_form(), contact=ContactParams(KAPPA_STAR, psi),
+                    rtol=RTOL)
 
 
 def _release_error(trajectory: Trajectory, psi: float) -> float:
@@ -114,10 +115,10 @@ def apparatus_speeds(quick: bool) -> dict:
            "phase_reduced": reduced.phase}
     models = {"closed-form": closed_form()}
     if not quick:
-        models["stokes"] = force_model("stokes-exact")
+        models["stokes"] = stokes_exact()
     for name, forces in models.items():
-        run = simulate_full_contact(ap, forces, rough, Initial(kappa=kappa_star, phi=math.pi), 3000.0 * ap.tau,
-                                    rtol=1e-9)
+        run = simulate(ap, Initial(kappa=kappa_star, phi=math.pi), 3000.0 * ap.tau, forces=forces, contact=rough,
+                       rtol=1e-9)
         c = run.columns  # the fixed point of the phase the run ends in, from its final state
         fixed = steady_full_contact(ap, forces, ContactParams(kappa_star, PSI_EXPERIMENT),
                                     run.info["final_phase"] == LOCKED,
@@ -128,17 +129,17 @@ def apparatus_speeds(quick: bool) -> dict:
 
 
 def _figure(path: Path, runs: dict) -> None:
-    import matplotlib.pyplot as plt
+    import matplotlib
 
-    from dynamics.contact.reduced import simulate_contact
-    from dynamics.equations.reduced import ReducedParams
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharex=True)
     for ax, (branch, psi) in zip(axes, BRANCHES.items()):
-        reduced = simulate_contact(ReducedParams(S, 1.0, MU_RATIO), ContactParams(KAPPA_STAR, psi), 60.0,
-                                   RELEASE.kappa, RELEASE.phi)
-        ax.plot(reduced.t, reduced.omega_b, "k-", lw=2.5, alpha=0.35, label="reduced (section 5), Omega_b")
-        ax.plot(reduced.t, reduced.omega_a, "k--", lw=2.5, alpha=0.35, label="reduced, Omega_a")
+        reduced = simulate(ReducedParams(S, 1.0, MU_RATIO), RELEASE, 60.0, contact=ContactParams(KAPPA_STAR, psi))
+        r = reduced.columns
+        ax.plot(reduced.t, r["omega_b"], "k-", lw=2.5, alpha=0.35, label="reduced (section 5), Omega_b")
+        ax.plot(reduced.t, r["omega_a"], "k--", lw=2.5, alpha=0.35, label="reduced, Omega_a")
         for ratio, trajectory in runs[branch].items():
             c = trajectory.columns
             keep = c["t_tau"] <= 60.0

@@ -9,15 +9,15 @@ run time against the reference it claims to meet.
   delta/a = 0.01 gets the closed forms (2.5)-(2.7), whose error there is
   O(delta/a) (the largest term, f_chi per W_b, is about 2.5 delta/a), and the
   reduced equations (2.11); the paper's apparatus, delta/a = 0.406
-  (a = 0.8 cm, b = 1.125 cm), gets the Stokes resistance table and the full
+  (a = 0.8 cm, b = 1.125 cm), gets the exact Stokes forces and the full
   equations (2.1)-(2.4).
 * The chosen force model meets its tolerance. Its five resistance
   coefficients are compared with a finite-element Stokes solve on the default
   mesh refined by 1.5 (own error below 1e-6, benchmarks/results/stokes.md) at
-  kappas that are neither study points nor table nodes; error convention of
+  kappas that are not study points; error convention of
   the study (T_a per W_b against |T_a per W_a|).
 * The chosen equations meet theirs. The reduced equations and the full
-  equations with Stokes-table forces are both run from rest at kappa = 0.5,
+  equations with the exact Stokes forces are both run from rest at kappa = 0.5,
   phi = 0.5 for 200 tau (the distinguished-limit apparatus with the steel
   apparatus' groups); at delta/a = 0.01 the relative error of X_b and of the
   gap 1 - kappa at the end must be within the tolerance, at 0.406 (where the full equations
@@ -31,8 +31,8 @@ from pathlib import Path
 from dynamics.app.auto import choose_equations, choose_forces
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import forces as forcemodels
-from dynamics.scenes import Initial
-from dynamics.simulate import simulate_full, simulate_reduced
+from dynamics.initial import Initial
+from dynamics.simulation import simulate
 from lubrication.forces import Resistance, resistance
 from lubrication.geometry import Annulus, Fluid, Motion
 from lubrication.stokes import default_mesh
@@ -56,8 +56,7 @@ def _row_error(got: Resistance, truth: Resistance) -> float:
 
 
 def _chosen_resistance(choice, annulus: Annulus) -> Resistance:
-    options = dict(choice.options, **({"delta_over_a": annulus.delta_over_a} if choice.model == "stokes" else {}))
-    model = forcemodels.force_model(choice.model, **options)
+    model = forcemodels.force_model(choice.model, **choice.options)
     unit = [model.forces(annulus, Motion(**{k: 1.0}), FLUID) for k in ("eps_dot", "omega_a", "omega_b")]
     return Resistance(unit[0].f_eps, unit[1].f_chi, unit[1].T_a, unit[2].f_chi, unit[2].T_a)
 
@@ -81,8 +80,8 @@ def equations_error(delta: float) -> float:
     steel = preset("steel")
     app = Apparatus.from_groups(steel.s, steel.upsilon, steel.mu_ratio, delta)
     release = Initial(kappa=0.5, phi=0.5)
-    reduced = simulate_reduced(app.reduced_params, release, T_END_TAU, apparatus=app, rtol=1e-10)
-    full = simulate_full(app, forcemodels.stokes_exact(), release, T_END_TAU * app.tau, rtol=1e-10)
+    reduced = simulate(app, release, T_END_TAU * app.tau, equations="reduced", rtol=1e-10)
+    full = simulate(app, release, T_END_TAU * app.tau, forces=forcemodels.stokes_exact(), rtol=1e-10)
     r, f = reduced.columns, full.columns
     return max(abs(r["x_b"][-1] - f["x_b"][-1]) / abs(f["x_b"][-1]),
                abs(r["one_minus_kappa"][-1] - f["one_minus_kappa"][-1]) / f["one_minus_kappa"][-1])

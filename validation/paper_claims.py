@@ -114,7 +114,7 @@ def _count(c: Check, word: str) -> str:
 
 
 def _phase(code: float) -> str:
-    from dynamics.simulate import PHASE_CODES
+    from dynamics.simulation import PHASE_CODES
 
     names = {v: k for k, v in PHASE_CODES.items()}
     return names.get(int(code), f"code {code:g}") if math.isfinite(code) else "nan"
@@ -392,7 +392,7 @@ CLAIMS: tuple[Claim, ...] = (
         "contact takes infinite time, the gap closing as zeta = zeta(0)/(1 + t zeta(0) sqrt(1 - s^2)) (3.9), "
         "about the stable fixed point sin(phi) = -s, while the apparatus rocks at omega^2 = "
         "sqrt(1 - s^2)/(Upsilon (mu_ + 1/2)) (3.10).",
-        {"floor": "figure 2 (mu_=1): stopped at the gap floor*",
+        {"floor": "figure 2 (mu_=1): 1 - kappa where it stopped*",
          "centre": "figure 2 (mu_=1): mean of phi - phi*",
          "closing": "figure 2 (mu_=1): growth rate of 1/zeta*",
          "frequency": "figure 2 (mu_=1): rocking frequency*"},
@@ -490,7 +490,7 @@ CLAIMS: tuple[Claim, ...] = (
         "delta/a = 0.325/0.8 = 0.41. No correction is estimated; the text points to Finn & Cox (2001) for "
         "general gaps.",
         {"slope": "Stokes: slope of log*ratio - 1* against log(delta/a), *",
-         "c": "Stokes: fitted c(kappa) against its closed form, *"},
+         "c": "Stokes: fitted c(kappa) against the derived coefficient, *"},
         _corrections, _corrections_verdict,
         optional={"limit": "full against reduced: log-log slope*",
                   "gap": "both rock: smallest (1-kappa) at the end, Stokes / lubrication*",

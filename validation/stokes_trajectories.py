@@ -25,7 +25,6 @@ Checked, as robust statements only:
 
 from __future__ import annotations
 
-import importlib.util
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,8 +34,8 @@ import numpy as np
 from dynamics.app.regime import classify
 from dynamics.apparatus import preset
 from dynamics.equations.forces import closed_form, stokes_exact
-from dynamics.scenes import Initial
-from dynamics.simulate import Trajectory, simulate_full
+from dynamics.initial import Initial
+from dynamics.simulation import Trajectory, simulate
 
 from .checks import Check, absolute, at_least, at_most
 
@@ -51,7 +50,6 @@ T_END = 10.0  # s
 THIN_GAP = 1e-3  # 1 - kappa taken as a thin gap
 RTOL = 1e-8
 FORCES = ("closed-form", "stokes")
-INSTALL_HINT = 'pip install "snail-cylinder[fem]"'
 
 
 @dataclass(frozen=True)
@@ -115,16 +113,16 @@ class Pair:
         return float(self.runs[forces].columns[name][-1])
 
     def ended_cleanly(self, forces: str) -> bool:
-        """Finite samples, and the run reached T_END or stopped at the Reynolds limit."""
+        """Finite samples, and the run reached T_END or stopped at the Reynolds or the runaway limit."""
         r = self.runs[forces]
-        clean_end = r.status == "completed" or r.event == "reynolds"
+        clean_end = r.status == "completed" or r.event in ("reynolds", "runaway")
         return clean_end and all(bool(np.all(np.isfinite(col))) for col in r.columns.values())
 
 
 def simulate_pair(name: str, nu: float, slope_deg: float, models: dict, t_end: float = T_END) -> Pair:
     """Both runs of ``name`` with oil ``nu`` on ``slope_deg``; ``models`` maps :data:`FORCES` to force models."""
     apparatus = preset(name, nu=nu, alpha=math.radians(slope_deg))
-    runs: dict[str, Trajectory] = {f: simulate_full(apparatus, models[f], INITIAL, t_end, rtol=RTOL)
+    runs: dict[str, Trajectory] = {f: simulate(apparatus, INITIAL, t_end, forces=models[f], rtol=RTOL)
                                    for f in FORCES}
     return Pair(name, nu, slope_deg, runs)
 
@@ -199,7 +197,7 @@ def checks_of(results: list[Pair]) -> list[Check]:
     """The robust statements of the module docstring."""
     bad = [f"{p.apparatus} {p.nu * 1e6:g} cSt {p.slope_deg:g} deg {f}" for p in results for f in FORCES
            if not p.ended_cleanly(f)]
-    checks = [absolute("runs not finite or stopped for another reason than T_END or the Reynolds limit",
+    checks = [absolute("runs not finite or stopped for another reason than T_END, the Reynolds or the runaway limit",
                        len(bad), 0, 0, "; ".join(bad) or f"{2 * len(results)} runs, rtol={RTOL:g}")]
     rocking = [p for p in results if p.both_rock]
     if rocking:
@@ -253,15 +251,11 @@ def run(outdir, quick: bool = False):
     Returns
     -------
     checks : list of Check
-        Empty when scikit-fem is missing.
     figures : list of str
         File names in ``outdir``.
     paragraph : str
         Markdown text with the table.
     """
-    if importlib.util.find_spec("skfem") is None:
-        return [], [], ("Not run: the Stokes forces need the finite-element solver (scikit-fem), which is not "
-                        f"installed; install the extra with: {INSTALL_HINT}")
     results = pairs(_cases(quick))
     figures = []
     if not quick:

@@ -1,0 +1,166 @@
+"""Bad input and faults: what was tried, and what each gets.
+
+Every case is run for real: the command line through :func:`dynamics.app.cli.main`
+(its exit status and the message on standard error), the Python API through the
+call (the exception and its message). A case passes when the status (or the
+exception type) is the expected one, the message carries the expected words, no
+traceback is printed and, for the command line, nothing is left in the output
+folder. :func:`table` renders the catalogue as the markdown table of the
+documentation; ``tests/test_faults.py`` runs it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["CASES", "Case", "Outcome", "run_case", "table"]
+
+GEOMETRY = ("--a", "0.008", "--b", "0.01125")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One thing a user might do wrong: ``argv`` for the command line, or ``call`` for the API."""
+
+    what: str
+    expected: str  # "exit 2", "exit 0", or an exception type name
+    words: tuple[str, ...]
+    argv: tuple[str, ...] = ()
+    call: object = None
+    scene: str = ""  # TOML written to a file named by "{scene}" in argv
+
+
+def _api(name):
+    def call():
+        from dynamics import Initial, Limits, preset, simulate
+
+        steel = preset("steel")
+        if name == "negative t_end":
+            simulate(steel, Initial(0.5), -1.0)
+        elif name == "kappa 1.5":
+            Initial(kappa=1.5)
+        elif name == "kappa nan":
+            Initial(kappa=math.nan)
+        elif name == "start beyond the gap floor":
+            simulate(steel, Initial(one_minus_kappa=1e-10), 1.0)
+        elif name == "bad method":
+            simulate(steel, Initial(0.5), 1.0, method="RK45")
+        elif name == "gap floor 2":
+            Limits(gap_floor=2.0)
+        elif name == "on_invalid ignore":
+            Limits(on_invalid="ignore")
+    return call
+
+
+CASES: tuple[Case, ...] = (
+    Case("scene: unknown key", "exit 2", ("initial.colour", "allowed keys"), ("run", "--set", "initial.colour=red")),
+    Case("scene: kappa0 = 1", "exit 2", ("initial.kappa", "[0, 1)"), ("run", "--set", "initial.kappa=1.0")),
+    Case("scene: start within 1e-10 of contact (beyond the gap floor)", "exit 2",
+         ("initial.kappa", "gap floor"), ("run", "--set", "initial.kappa=0.9999999999")),
+    Case("scene: negative viscosity", "exit 2", ("fluid.nu", "(0, inf) m^2/s"), ("run", "--set", "fluid.nu=-200 cSt")),
+    Case("scene: wrong unit", "exit 2", ("incline.alpha", "unit"), ("run", "--set", "incline.alpha=2 kg")),
+    Case("scene: gap floor out of range", "exit 2", ("run.gap_floor", "(0, 1)"), ("run", "--set", "run.gap_floor=2")),
+    Case("scene: negative Reynolds limit", "exit 2", ("run.max_gap_reynolds", "(0, inf)", "'none'"),
+         ("run", "--set", "run.max_gap_reynolds=-1")),
+    Case("scene: unknown on_invalid", "exit 2", ("run.on_invalid", "'stop', 'warn'"),
+         ("run", "--set", "run.on_invalid=ignore")),
+    Case("scene: output interval longer than the run", "exit 2", ("run.output_interval",),
+         ("run", "--t-end", "1", "--output-interval", "5 s")),
+    Case("scene: open ends in the reduced equations", "exit 2", ("model.ends", "full"),
+         ("run", "--model", "reduced", "--set", "model.ends=open")),
+    Case("scene: Reynolds forces in the reduced equations", "exit 2", ("model.forces", "'closed-form' or 'auto'"),
+         ("run", "--model", "reduced", "--forces", "reynolds")),
+    Case("scene file with a UTF-8 byte-order mark", "exit 0", ("reached t_end",), ("run", "{scene}", "--t-end", "0.1"),
+         scene="\ufeff[apparatus]\npreset = \"steel\"\n[run]\nt_end = 1.0\n"),
+    Case("scene file that is not TOML", "exit 2", ("not valid TOML",), ("run", "{scene}"), scene="[apparatus\n"),
+    Case("output folder: empty path", "exit 2", ("must be a path",), ("run", "-o", "")),
+    Case("output folder: in /proc", "exit 2", ("cannot write outputs to /proc/snail",), ("run", "-o", "/proc/snail")),
+    Case("output folder: through a file", "exit 2", ("is a file, not a folder",), ("run", "-o", "{file}/out")),
+    Case("output folder: holds other files", "exit 2", ("not a run's outputs",), ("run", "-o", "{full}")),
+    Case("forces: kappa = 1", "exit 2", ("kappa must be in [0, 1)",), ("forces", *GEOMETRY, "--kappa", "1")),
+    Case("forces: b < a", "exit 2", ("b must be greater than a",), ("forces", "--a", "0.02", "--b", "0.01",
+                                                                  "--kappa", "0.5")),
+    Case("forces: b/a overflows", "exit 2", ("finite ratio b/a",), ("forces", "--a", "1e-300", "--b", "1e300",
+                                                                  "--kappa", "0.5")),
+    Case("forces: cavitation with closed forms", "exit 2", ("needs the Reynolds solver",),
+         ("forces", *GEOMETRY, "--kappa", "0.5", "--cavitation", "jfo")),
+    Case("forces: negative reference pressure", "exit 2", ("--p-ref must be in (0, inf) Pa",),
+         ("forces", *GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1")),
+    Case("forces: not a number", "exit 2", ("not a number",), ("forces", *GEOMETRY, "--kappa", "abc")),
+    Case("API: simulate with a negative t_end", "ValueError", ("t_end must be in (0, inf) s",),
+         call=_api("negative t_end")),
+    Case("API: Initial(kappa=1.5)", "ValueError", ("kappa must be in [0, 1)", "1.5"), call=_api("kappa 1.5")),
+    Case("API: Initial(kappa=nan)", "ValueError", ("kappa must be in [0, 1)", "nan"), call=_api("kappa nan")),
+    Case("API: start beyond the gap floor", "ValueError", ("gap floor",), call=_api("start beyond the gap floor")),
+    Case("API: unknown integrator", "ValueError", ("method must be one of",), call=_api("bad method")),
+    Case("API: Limits(gap_floor=2)", "ValueError", ("gap_floor must be in (0, 1)",), call=_api("gap floor 2")),
+    Case("API: Limits(on_invalid='ignore')", "ValueError", ("on_invalid must be one of",),
+         call=_api("on_invalid ignore")),
+)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    case: Case
+    got: str
+    message: str
+    clean: bool  # no traceback, nothing half-written
+
+    @property
+    def passed(self) -> bool:
+        return self.got == self.case.expected and self.clean and all(w in self.message for w in self.case.words)
+
+
+def run_case(case: Case) -> Outcome:
+    """Run one case in a fresh temporary folder."""
+    from dynamics.app.cli import main
+
+    if case.call is not None:
+        try:
+            case.call()
+        except Exception as err:  # noqa: BLE001 - the type is what is checked
+            return Outcome(case, type(err).__name__, str(err), True)
+        return Outcome(case, "no error", "", True)
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "file").write_text("a file")
+        (tmp / "full").mkdir()
+        (tmp / "full" / "notes.txt").write_text("keep me")
+        (tmp / "scene.toml").write_text(case.scene, encoding="utf-8")
+        argv = [a.replace("{scene}", str(tmp / "scene.toml")).replace("{file}", str(tmp / "file"))
+                .replace("{full}", str(tmp / "full")) for a in case.argv]
+        if argv and argv[0] == "run" and "-o" not in argv:
+            argv += ["-o", str(tmp / "out")]
+        if argv and argv[0] == "run":
+            argv.append("--no-plot")
+        err, out = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
+            try:
+                code = main(argv)
+            except SystemExit as exit_:
+                code = exit_.code
+        text = err.getvalue() + out.getvalue()
+        left = code != 0 and (tmp / "out").exists()
+        intact = (tmp / "full" / "notes.txt").read_text() == "keep me"
+        return Outcome(case, f"exit {code}", text, "Traceback" not in text and not left and intact)
+
+
+def table(outcomes) -> str:
+    """The markdown table: what was tried, what it got, the message (shortened), pass."""
+    lines = ["| what was tried | expected | got | message | passed |", "|---|---|---|---|---|"]
+    for o in outcomes:
+        message = " ".join(o.message.split())
+        message = (message[:140] + "...") if len(message) > 140 else message
+        lines.append(f"| {o.case.what} | {o.case.expected} | {o.got} | {message.replace('|', '/')} | "
+                     f"{'yes' if o.passed else '**NO**'} |")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    results = [run_case(c) for c in CASES]
+    print(table(results))
