@@ -12,8 +12,8 @@ Part A: forces at one instant. For delta/a in {0.003, 0.01, 0.03, 0.1,
 * the finite-element Stokes solve on the default mesh
   (:func:`lubrication.stokes.default_mesh`) scaled by 0.25 ... 1.5 in both
   directions;
-* Stokes resistance tables (:class:`lubrication.stokes_tables.StokesTable`)
-  with 4, 8 and 16 Chebyshev nodes on the default mesh.
+* the exact 2-D Stokes solution (:mod:`lubrication.stokes_exact`), which the
+  finite-element truth checks.
 
 Error. The truth at finite delta/a is the Stokes solve on the default mesh
 scaled by 2 (its own error, estimated from the scale-1.5 error and the h^4 rate, is
@@ -25,17 +25,17 @@ difference of O(1/zeta) parts); the error of a model is the largest of the
 five.
 
 Cost. The median wall time of one force evaluation (one motion), from
-Python through the public faces (:func:`lubrication.fluid_forces`,
-:meth:`StokesTable.forces`; for the finite elements the whole solve with its
-factorisation, cache cleared) and, for the models the equations of motion
-can call, from a numba loop over :func:`dynamics.equations.forces.evaluate`:
-what one right-hand side pays. Samples of at least 2 ms, interleaved over
-all models in shuffled rounds, JIT compilation excluded by a warm-up. A
-table's one-off build time is recorded apart.
+Python through the public face :func:`lubrication.fluid_forces` (for the
+finite elements the whole solve with its factorisation, cache cleared) and,
+for the models the equations of motion can call, from a numba loop over
+:func:`dynamics.equations.forces.evaluate`: what one right-hand side pays.
+Samples of at least 2 ms, interleaved over all models in shuffled rounds, JIT
+compilation excluded by a warm-up.
 
 Part B: trajectories. The full model (2.1)-(2.4) with each force model
-(closed form, Reynolds N = 16 on the Sommerfeld grid, Stokes table) and the
-reduced model (2.11), each with LSODA, BDF and Radau at rtol 1e-4 ... 1e-10,
+(closed form, Reynolds N = 16 on the Sommerfeld grid, exact Stokes) and the
+reduced model (2.11), each with the compiled Radau IIA engine and scipy's
+LSODA, BDF and Radau at rtol 1e-4 ... 1e-10,
 released at rest from kappa = 0.5, phi = 0.5 and run for 200 tau, at
 delta/a = 0.01 (the distinguished-limit apparatus of
 :meth:`dynamics.apparatus.Apparatus.from_groups` with the steel
@@ -43,10 +43,11 @@ apparatus' s, Upsilon and mu_) and 0.40625 (the steel apparatus itself).
 The observables are X_b and the gap 1 - kappa at t_end (about 1e-5, near
 contact: the relative error of kappa itself would hide any error in it); the
 error is the larger of their relative errors against a reference run: the
-full model with Stokes-table forces, LSODA at rtol 1e-12. The relative error
-of kappa is recorded too. At the other delta/a of part A
-only the reduced model and the full model with closed forms and with the
-Stokes table are run (LSODA, rtol 1e-10), to measure how the error of the equations grows with delta/a.
+full model with the exact Stokes forces, the compiled engine at rtol 1e-12. The
+relative error of kappa is recorded too. At the other delta/a of part A only
+the reduced model and the full model with closed forms and with the exact
+Stokes forces are run (the engine, rtol 1e-10), to measure how the error of the
+equations grows with delta/a.
 RK45 is not run: the full model is stiff (NUMERICS.md), and at
 delta/a = 0.01 RK45 at rtol 1e-4 took 2 million steps (300 s) to cover
 less than half the run (measured while writing this script).
@@ -73,14 +74,12 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from lubrication.stokes_tables import N_NODES, StokesTable
-
 from benchmarks.publish import RESULTS, publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import forces as forcemodels
-from dynamics.scenes import Initial
-from dynamics.simulate import simulate_full, simulate_reduced
+from dynamics.initial import Initial
+from dynamics.simulation import simulate
 from lubrication.files import save_figure, write_text
 from lubrication.forces import Resistance, fluid_forces, resistance
 from lubrication.geometry import Annulus, Fluid, Motion
@@ -93,7 +92,6 @@ REYNOLDS_GRIDS = ("sommerfeld", "uniform")
 REYNOLDS_PROFILES = ("thin", "eccentric")
 FEM_SCALES = (0.25, 0.5, 1.0, 1.5)
 TRUTH_SCALE = 2.0
-TABLE_NODES = (4, 8, N_NODES)
 ROUNDS = 5
 BATCH_SECONDS = 2e-3
 FEM_ROUNDS = 2
@@ -105,13 +103,14 @@ TIMED_MOTION = Motion(eps_dot=1e-6, chi_dot=0.1, omega_a=1.0, omega_b=0.5)
 
 TRAJECTORY_DELTAS = (0.01, 0.40625)
 EQUATION_DELTAS = DELTAS
-METHODS = ("LSODA", "BDF", "Radau")
+METHODS = ("radau", "LSODA", "BDF", "Radau")  # the compiled engine, then scipy's
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
 REFERENCE_RTOL = 1e-12
 T_END_TAU = 200.0
 RELEASE = Initial(kappa=0.5, phi=0.5)
 TRAJECTORY_REPEATS = 3
 EQUATIONS_RTOL = 1e-10
+EQUATIONS_METHOD = REFERENCE_METHOD = "radau"
 
 CHOICE_FILE = Path(__file__).resolve().parents[1] / "dynamics" / "data" / "model_choice.json"
 
@@ -122,7 +121,7 @@ def _label(model: str, options: dict) -> str:
     return model + "".join(f" {k}={v}" for k, v in options.items())
 
 
-def _candidates(table_nodes) -> list[dict]:
+def _candidates() -> list[dict]:
     """Every (model, options) of part A; ``eom`` marks those the equations of motion can call."""
     out = [{"model": "closed-form", "options": {}, "eom": True}]
     for grid in REYNOLDS_GRIDS:
@@ -130,9 +129,7 @@ def _candidates(table_nodes) -> list[dict]:
             for n in REYNOLDS_CELLS:
                 out.append({"model": "reynolds", "options": {"n": n, "grid": grid, "profile": profile},
                             "eom": True})
-    for nodes in table_nodes:
-        # only the default table is shared through the cache: another one is rebuilt on load
-        out.append({"model": "stokes-table", "options": {"n_nodes": nodes}, "eom": nodes == N_NODES})
+    out.append({"model": "stokes-exact", "options": {}, "eom": True})
     for scale in FEM_SCALES:
         out.append({"model": "stokes-fem", "options": {"mesh_scale": scale}, "eom": False})
     return out
@@ -152,31 +149,19 @@ def _row_errors(got: Resistance, truth: Resistance) -> dict:
     return {**rel, "row": max(rel.values())}
 
 
-def _table_resistance(table: StokesTable, annulus: Annulus) -> Resistance:
-    radial = table.forces(annulus, Motion(eps_dot=1.0), FLUID)
-    inner = table.forces(annulus, Motion(omega_a=1.0), FLUID)
-    outer = table.forces(annulus, Motion(omega_b=1.0), FLUID)
-    return Resistance(radial.f_eps, inner.f_chi, inner.T_a, outer.f_chi, outer.T_a)
-
-
 @njit(cache=False, nogil=True)
-def _evaluate_loop(calls, profile, sommerfeld, rule, points_per_cell, table, cavitation,
-                   a, b, mu, length, kappa, omk):
+def _evaluate_loop(calls, model, a, b, mu, length, kappa, omk):
     """``calls`` evaluations of the jitted force model, with inputs that change from call to call."""
     total = 0.0
     for i in range(calls):
         s = 1.0 + 1e-9 * i
-        f_eps, f_chi, t_a = forcemodels.evaluate(profile, sommerfeld, rule, points_per_cell, table,
-                                                 cavitation, a, b, mu, length, kappa, omk,
-                                                 1e-6 * s, 0.9 * s, 0.4 * s)
+        f_eps, f_chi, t_a = forcemodels.evaluate(model, a, b, mu, length, kappa, omk, 1e-6 * s, 0.9 * s, 0.4 * s)
         total += f_eps + f_chi + t_a
     return total
 
 
 def _jit_batch(model: forcemodels.ForceModel, annulus: Annulus):
-    args = (model.profile, model.sommerfeld, model.rule, model.points_per_cell, model.table,
-            model.cavitation, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa,
-            annulus.one_minus_kappa)
+    args = (model.data, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa, annulus.one_minus_kappa)
 
     def batch(calls):
         start = time.perf_counter()
@@ -206,43 +191,27 @@ def _fem_seconds(annulus: Annulus, mesh: dict, rounds: int) -> float:
     return float(np.median(times))
 
 
-def _tables(delta: float, nodes_list) -> dict:
-    """Stokes tables of ``delta`` by node count, each built here (the cache is not read): (table, seconds)."""
-    out = {}
-    for nodes in nodes_list:
-        table = StokesTable.build(delta, n_nodes=nodes)
-        out[nodes] = (table, table.build_time_s)
-    return out
-
-
-def _eom_model(c: dict, tables: dict) -> forcemodels.ForceModel | None:
+def _eom_model(c: dict) -> forcemodels.ForceModel | None:
     if c["model"] == "closed-form":
         return forcemodels.closed_form()
     if c["model"] == "reynolds":
         return forcemodels.reynolds(**c["options"])
-    if c["model"] == "stokes-table":
-        table, _ = tables[c["options"]["n_nodes"]]
-        return forcemodels.ForceModel("stokes", table=tuple(table.arrays))
+    if c["model"] == "stokes-exact":
+        return forcemodels.stokes_exact()
     return None
 
 
-def force_case(delta: float, kappa: float, tables: dict, *, rounds=ROUNDS, batch_seconds=BATCH_SECONDS,
+def force_case(delta: float, kappa: float, *, rounds=ROUNDS, batch_seconds=BATCH_SECONDS,
                fem_rounds=FEM_ROUNDS, seed=0) -> dict:
     """Errors against the fine Stokes solve and costs of every candidate at one (delta/a, kappa)."""
     annulus = Annulus.from_kappa(A, A * (1.0 + delta), kappa, length=LENGTH)
     truth_mesh = _fem_mesh(delta, TRUTH_SCALE)
     truth = resistance(annulus, FLUID, "stokes", **truth_mesh)
     rows, timers = [], []
-    for c in _candidates(sorted(tables)):
+    for c in _candidates():
         row = {"model": c["model"], "options": c["options"], "label": _label(c["model"], c["options"]),
                "eom": c["eom"]}
-        if c["model"] == "stokes-table":
-            table, build_s = tables[c["options"]["n_nodes"]]
-            got = _table_resistance(table, annulus)
-            row["setup_s"] = build_s
-            timers.append(_Timer((row["label"], "python"), _python_batch(
-                lambda t=table: t.forces(annulus, TIMED_MOTION, FLUID))))
-        elif c["model"] == "stokes-fem":
+        if c["model"] == "stokes-fem":
             row["mesh"] = _fem_mesh(delta, c["options"]["mesh_scale"])
             got = resistance(annulus, FLUID, "stokes", **row["mesh"])
         else:
@@ -250,7 +219,7 @@ def force_case(delta: float, kappa: float, tables: dict, *, rounds=ROUNDS, batch
             got = resistance(annulus, FLUID, c["model"], **opts)
             timers.append(_Timer((row["label"], "python"), _python_batch(
                 lambda m=c["model"], o=opts: fluid_forces(annulus, TIMED_MOTION, FLUID, m, **o))))
-        model = _eom_model(c, tables)
+        model = _eom_model(c)
         if model is not None:
             timers.append(_Timer((row["label"], "jit"), _jit_batch(model, annulus)))
         row["errors"] = _row_errors(got, truth)
@@ -285,12 +254,12 @@ def _is_steel(delta: float) -> bool:
     return math.isclose(delta, preset("steel").delta_over_a, rel_tol=1e-9)
 
 
-def _run(app: Apparatus, equations: str, forces: str, method: str, rtol: float, delta: float):
+def _run(app: Apparatus, equations: str, forces: str, method: str, rtol: float):
     if equations == "reduced":
-        return simulate_reduced(app.reduced_params, RELEASE, T_END_TAU, apparatus=app, rtol=rtol, method=method)
+        return simulate(app, RELEASE, T_END_TAU * app.tau, equations="reduced", rtol=rtol, method=method)
     model = {"closed-form": forcemodels.closed_form, "reynolds": forcemodels.reynolds,
-             "stokes": lambda: forcemodels.stokes(delta)}[forces]()
-    return simulate_full(app, model, RELEASE, T_END_TAU * app.tau, rtol=rtol, method=method)
+             "stokes": forcemodels.stokes_exact}[forces]()
+    return simulate(app, RELEASE, T_END_TAU * app.tau, forces=model, rtol=rtol, method=method)
 
 
 def _final(tr) -> dict:
@@ -311,26 +280,26 @@ def trajectory_study(delta: float, *, methods=METHODS, rtols=RTOLS, repeats=TRAJ
     """Wall time and error at t_end of each (equations, forces, method, rtol) at one delta/a.
 
     With ``full`` False only the reduced model and the full model with closed
-    forms and with Stokes-table forces run, with LSODA at EQUATIONS_RTOL.
+    forms and with the exact Stokes forces run, with EQUATIONS_METHOD at EQUATIONS_RTOL.
     """
     app = _apparatus(delta)
-    ref_run = _run(app, "full", "stokes", "LSODA", REFERENCE_RTOL, delta)
+    ref_run = _run(app, "full", "stokes", REFERENCE_METHOD, REFERENCE_RTOL)
     ref = _final(ref_run)
     if full:
         configs = [("reduced", "closed-form", m, r) for m in methods for r in rtols]
         configs += [("full", f, m, r) for f in ("closed-form", "reynolds", "stokes") for m in methods for r in rtols]
     else:
-        configs = [(e, f, "LSODA", EQUATIONS_RTOL)
+        configs = [(e, f, EQUATIONS_METHOD, EQUATIONS_RTOL)
                    for e, f in (("reduced", "closed-form"), ("full", "closed-form"), ("full", "stokes"))]
     for equations, forces in {(c[0], c[1]) for c in configs}:  # warm-up: compile each right-hand side
-        _run(app, equations, forces, "LSODA", 1e-4, delta)
+        _run(app, equations, forces, "radau", 1e-4)
     rng = np.random.default_rng(seed)
     walls: dict = {c: [] for c in configs}
     finals = {}
     for _ in range(repeats):
         for i in rng.permutation(len(configs)):
             c = configs[i]
-            tr = _run(app, *c, delta)
+            tr = _run(app, *c)
             walls[c].append(tr.wall_time_s)
             finals[c] = (tr, _final(tr))
     rows = []
@@ -341,7 +310,7 @@ def trajectory_study(delta: float, *, methods=METHODS, rtols=RTOLS, repeats=TRAJ
                      "final": fin, **_trajectory_error(fin, ref)})
     return {"delta_over_a": delta, "apparatus": "steel preset" if _is_steel(delta) else
             "Apparatus.from_groups with the steel groups", "tau": app.tau, "t_end_tau": T_END_TAU,
-            "reference": {"equations": "full", "forces": "stokes", "method": "LSODA", "rtol": REFERENCE_RTOL,
+            "reference": {"equations": "full", "forces": "stokes", "method": REFERENCE_METHOD, "rtol": REFERENCE_RTOL,
                           "status": ref_run.status, "wall_s": ref_run.wall_time_s, "final": ref},
             "runs": rows}
 
@@ -349,17 +318,14 @@ def trajectory_study(delta: float, *, methods=METHODS, rtols=RTOLS, repeats=TRAJ
 # -- the study, the stored choice file -----------------------------------------------------------
 
 def run(deltas=DELTAS, kappas=KAPPAS, trajectory_deltas=TRAJECTORY_DELTAS, equation_deltas=EQUATION_DELTAS,
-        table_nodes=TABLE_NODES, rounds=ROUNDS, fem_rounds=FEM_ROUNDS, repeats=TRAJECTORY_REPEATS) -> dict:
+        rounds=ROUNDS, fem_rounds=FEM_ROUNDS, repeats=TRAJECTORY_REPEATS) -> dict:
     """Part A over (deltas x kappas) and part B at ``trajectory_deltas`` (full matrix) and
     ``equation_deltas`` (reduced and full closed-form only); returns plain data."""
     started = time.perf_counter()
     forces = []
-    table_seconds = {}
     for delta in deltas:
-        tables = _tables(delta, table_nodes)
-        table_seconds[delta] = {n: s for n, (_, s) in tables.items()}
         for kappa in kappas:
-            forces.append(force_case(delta, kappa, tables, rounds=rounds, fem_rounds=fem_rounds))
+            forces.append(force_case(delta, kappa, rounds=rounds, fem_rounds=fem_rounds))
             print(f"forces delta/a {delta} kappa {kappa}: {time.perf_counter() - started:.0f} s", file=sys.stderr)
     trajectories = []
     for delta in sorted(set(trajectory_deltas) | set(equation_deltas)):
@@ -372,11 +338,11 @@ def run(deltas=DELTAS, kappas=KAPPAS, trajectory_deltas=TRAJECTORY_DELTAS, equat
         "settings": {"deltas": list(deltas), "kappas": list(kappas), "a": A, "length": LENGTH,
                      "nu": FLUID.nu, "rho": FLUID.rho, "reynolds_cells": list(REYNOLDS_CELLS),
                      "fem_scales": list(FEM_SCALES), "truth_scale": TRUTH_SCALE,
-                     "table_nodes": list(table_nodes), "rounds": rounds, "batch_seconds": BATCH_SECONDS,
+                     "rounds": rounds, "batch_seconds": BATCH_SECONDS,
                      "fem_rounds": fem_rounds, "trajectory_deltas": list(trajectory_deltas),
                      "equation_deltas": list(equation_deltas), "t_end_tau": T_END_TAU,
-                     "release": {"kappa": RELEASE.kappa, "phi": RELEASE.phi}, "repeats": repeats},
-        "table_build_s": {str(d): {str(n): s for n, s in v.items()} for d, v in table_seconds.items()},
+                     "release": {"kappa": RELEASE.kappa, "phi": RELEASE.phi}, "repeats": repeats,
+                     "equations_method": EQUATIONS_METHOD},
         "forces": forces,
         "trajectories": trajectories,
         "run_seconds": time.perf_counter() - started,
@@ -409,15 +375,14 @@ def model_choice(results: dict) -> dict:
             return [[rounded(cases[(d, k)][label].get(key)) for k in kappas] for d in deltas]
         entry = {"model": proto["model"], "options": proto["options"], "equations_of_motion": proto["eom"],
                  "error": grid("error", _up), "jit_s": grid("jit_s", _sig), "python_s": grid("python_s", _sig)}
-        if proto["model"] == "stokes-table":
-            entry["setup_s"] = [_sig(results["table_build_s"][str(d)][str(proto["options"]["n_nodes"])])
-                                for d in deltas]
         entries.append(entry)
+    # studies written before the compiled engine ran the equations with LSODA
+    method = s.get("equations_method", "LSODA")
     eq_deltas, reduced, reduced_s, full, full_s = [], [], [], {}, {}
     for t in results["trajectories"]:
         d = t["delta_over_a"]
         eq_deltas.append(d)
-        pick = [r for r in t["runs"] if r["method"] == "LSODA" and r["rtol"] == EQUATIONS_RTOL]
+        pick = [r for r in t["runs"] if r["method"] == method and r["rtol"] == EQUATIONS_RTOL]
         red = next(r for r in pick if r["equations"] == "reduced")
         reduced.append(_up(red["error"]))
         reduced_s.append(_sig(red["wall_s"]))
@@ -436,8 +401,8 @@ def model_choice(results: dict) -> dict:
                   "python_s": "median wall seconds of one force evaluation through the Python face",
                   "trajectory_error": f"larger relative error of X_b and 1 - kappa after {T_END_TAU:g} tau from "
                                       f"kappa = {RELEASE.kappa:g}, phi = {RELEASE.phi:g} at rest, against the "
-                                      "full model with Stokes-table forces (LSODA, rtol 1e-12); LSODA at "
-                                      f"rtol {EQUATIONS_RTOL:g}"},
+                                      "full model with the exact Stokes forces at rtol "
+                                      f"{REFERENCE_RTOL:g}; method {method} at rtol {EQUATIONS_RTOL:g}"},
         "deltas": deltas, "kappas": kappas,
         "forces": entries,
         "equations": {"deltas": eq_deltas, "reduced": reduced, "reduced_s": reduced_s,
@@ -481,13 +446,12 @@ def to_markdown(results: dict, choice: dict) -> str:
                      + f" | {_us(max(jit)) if jit else '-'} | {_us(max(py)) if py else '-'} |")
     truth = max(c["truth_error_estimate"] for c in results["forces"])
     lines += ["", f"Reynolds rows for N = 32, 128 and 512 are in the JSON. Largest estimated error of the truth "
-              f"itself: {_e(truth)}. Stokes tables' one-off build (s): "
-              + "; ".join(f"d/a={d}: " + ", ".join(f"{n} nodes {s:.1f}" for n, s in v.items())
-                          for d, v in results["table_build_s"].items()) + ".", ""]
+              f"itself: {_e(truth)}.", ""]
     lines += ["## Trajectories", "",
               (f"Release at rest from kappa = 0.5, phi = 0.5, {T_END_TAU:g} tau. Error: larger relative error of "
-               "X_b and of the gap 1 - kappa at t_end against the full model with Stokes-table forces "
-               "(LSODA, rtol 1e-12); each is also shown apart. Wall time: median of the repeats."), ""]
+               "X_b and of the gap 1 - kappa at t_end against the full model with the exact Stokes forces "
+               f"(the compiled engine, rtol {REFERENCE_RTOL:g}); each is also shown apart. Method radau is the "
+               "compiled engine, the others scipy's. Wall time: median of the repeats."), ""]
     for t in results["trajectories"]:
         ref = t["reference"]
         lines += [f"### delta/a = {t['delta_over_a']:g} ({t['apparatus']}, tau = {t['tau']:.4g} s)", "",
@@ -501,7 +465,7 @@ def to_markdown(results: dict, choice: dict) -> str:
         lines.append("")
     eq = choice["equations"]
     lines += ["## The stored study: what `dynamics.app.auto` chooses from", "",
-              "Trajectory error of the equations (LSODA, rtol 1e-10) against delta/a:", "",
+              f"Trajectory error of the equations ({EQUATIONS_METHOD}, rtol {EQUATIONS_RTOL:g}) against delta/a:", "",
               "| delta/a | reduced (2.11) | " + " | ".join(f"full, {f}" for f in eq["full"]) + " |",
               "|---|---|" + "---|" * len(eq["full"])]
     for i, d in enumerate(eq["deltas"]):
@@ -516,7 +480,7 @@ def _choices_table() -> str:
 
     lines = [("Automatic choices for a scene with `equations = \"auto\"` and `forces = \"auto\"` "
               "(`dynamics.app.auto.resolve_model`, kappa up to 0.99): the equations first (the reduced ones against "
-              "the full ones with Stokes-table forces), then, for the full equations, the cheapest forces whose "
+              "the full ones with the exact Stokes forces), then, for the full equations, the cheapest forces whose "
               "force error and measured trajectory error both meet the tolerance. The reduced equations have the "
               "closed forms built in."),
              "",
@@ -542,7 +506,7 @@ def pareto_figure(results: dict, choice: dict):
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
-    markers = {"closed-form": "*", "reynolds": "o", "stokes-table": "s", "stokes-fem": "^"}
+    markers = {"closed-form": "*", "reynolds": "o", "stokes-exact": "s", "stokes-fem": "^"}
     for ax, delta in zip(axes[0], (0.01, 0.40625)):
         i = choice["deltas"].index(delta)
         points = []
@@ -555,7 +519,7 @@ def pareto_figure(results: dict, choice: dict):
         for family in dict.fromkeys(p[2] for p in points):
             xs = [p[0] for p in points if p[2] == family]
             ys = [p[1] for p in points if p[2] == family]
-            ax.loglog(xs, ys, markers[family.split()[0]], ms=5, label=family, alpha=0.8)
+            ax.loglog(xs, ys, markers.get(family.split()[0], "x"), ms=5, label=family, alpha=0.8)
         front, best = [], math.inf
         for x, y, _ in sorted(points):
             if y < best:
@@ -569,7 +533,7 @@ def pareto_figure(results: dict, choice: dict):
     matrix = [t for t in results["trajectories"] if t["delta_over_a"] in results["settings"]["trajectory_deltas"]]
     for ax, t in zip(axes[1], matrix):
         for (equations, forces) in dict.fromkeys((r["equations"], r["forces"]) for r in t["runs"]):
-            for method, mk in zip(METHODS, "osd"):
+            for method, mk in zip(METHODS, "osdv"):
                 rows = [r for r in t["runs"] if (r["equations"], r["forces"], r["method"]) == (equations, forces, method)]
                 ax.loglog([r["wall_s"] for r in rows], [max(r["error"], 1e-16) for r in rows], mk + "-", ms=4,
                           lw=0.6, label=f"{equations} {forces} {method}")

@@ -1,4 +1,4 @@
-r"""Accuracy, size and cost of the finite-element Stokes solver, and of the table lookup.
+r"""Accuracy, size and cost of the finite-element Stokes solver, and of a table lookup.
 
 For delta/a in {0.01, 0.41} and kappa in {0.5, 0.9, 0.99} (a = 1, mu = 1,
 clustering 0.5) the five resistance coefficients of
@@ -30,11 +30,14 @@ factorisation). ``total`` is their sum; the end-to-end call
 :func:`stokes_resistance` (with its factorisation cache cleared) is also
 timed on the default mesh and checked to agree with the split run.
 
-Table lookup. :func:`lubrication.stokes_tables.table_forces` is called from
-a numba loop over a spread of kappa, with the arrays of a cached
-delta/a = 0.41 table if one exists, else of ``StokesTable.build(0.41,
-n_nodes=8)``; the median time per call over several rounds is reported, JIT
-compilation excluded.
+Table lookup. The resistance a trajectory needs at every step could come
+from a table of the ratios to (2.5)-(2.7) against zeta = sqrt(1 - kappa^2)
+rather than from a solve: :func:`benchmarks.stokes_exact.table_forces` on the
+table of the exact ratios at 16 Chebyshev-Lobatto nodes for delta/a = 0.41
+(:func:`benchmarks.stokes_exact.exact_table`) is called from a numba loop over
+a spread of kappa; the median time per call over several rounds is reported,
+JIT compilation excluded. (The exact Stokes forces themselves are timed against
+it in :mod:`benchmarks.stokes_exact`.)
 
 Goals: relative error <= 1e-8 at kappa <= 0.9 in under 2 s per configuration;
 <= 1e-5 at kappa = 0.99; table lookup under 1 microsecond from jitted code.
@@ -57,15 +60,15 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish  # noqa: E402
-from benchmarks.reynolds import _machine  # noqa: E402
-from lubrication.stokes import (  # noqa: E402
+from benchmarks.publish import publish
+from benchmarks.reynolds import _machine
+from benchmarks.stokes_exact import exact_table, table_forces
+from lubrication.stokes import (
     _Discretisation,
-    _discretisation,
+    clear_cache,
     default_mesh,
     stokes_resistance,
 )
-from lubrication.stokes_tables import StokesTable, table_forces  # noqa: E402
 
 DELTAS = (0.01, 0.41)
 KAPPAS = (0.5, 0.9, 0.99)
@@ -139,20 +142,20 @@ def _errors(meshes) -> dict:
 
 
 def _end_to_end(delta, kappa) -> dict:
-    _discretisation.cache_clear()
+    clear_cache()
     r = stokes_resistance(1.0, 1.0 + delta, kappa, clustering=CLUSTERING)
-    _discretisation.cache_clear()
+    clear_cache()
     return {"wall_time_s": r.wall_time_s, "dofs": r.dofs,
             "coefficients": {n: getattr(r, n) for n in NAMES}}
 
 
 @njit(cache=False, nogil=True)
-def _lookup_loop(zeta_nodes, node_ratios, contact, kappas, n):
+def _lookup_loop(zeta_nodes, node_ratios, kappas, n):
     total = 0.0
     m = kappas.size
     for i in range(n):
         k = kappas[i % m]
-        f_eps, f_chi, t_a = table_forces(zeta_nodes, node_ratios, contact, 1.0, 0.41, 1.0, 1.0,
+        f_eps, f_chi, t_a = table_forces(zeta_nodes, node_ratios, 1.0, 0.41, 1.0, 1.0,
                                          k, 1.0 - k, 1.0, 0.5, -0.3)
         total += f_eps + f_chi + t_a
     return total
@@ -160,19 +163,15 @@ def _lookup_loop(zeta_nodes, node_ratios, contact, kappas, n):
 
 def _lookup(calls=LOOKUP_CALLS, rounds=LOOKUP_ROUNDS) -> dict:
     start = time.perf_counter()
-    table = StokesTable.read(StokesTable.path(0.41))
-    source = "cached table"
-    if table is None:
-        table = StokesTable.build(0.41, n_nodes=8)
-        source = "StokesTable.build(0.41, n_nodes=8)"
+    zn, nr = exact_table(0.41)
     prep = time.perf_counter() - start
-    zn, nr, ct = table.arrays
+    source = "exact ratios at Chebyshev-Lobatto nodes in zeta"
     kappas = np.linspace(0.0, 0.999, 97)
-    _lookup_loop(zn, nr, ct, kappas, 10)  # compile
+    _lookup_loop(zn, nr, kappas, 10)  # compile
     times = []
     for _ in range(rounds):
         t0 = time.perf_counter()
-        _lookup_loop(zn, nr, ct, kappas, calls)
+        _lookup_loop(zn, nr, kappas, calls)
         times.append((time.perf_counter() - t0) / calls)
     return {"table": source, "n_nodes": int(zn.size), "table_seconds": prep, "calls": calls,
             "rounds": rounds, "seconds_per_call": float(np.median(times)),

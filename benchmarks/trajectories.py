@@ -1,67 +1,82 @@
-r"""Wall time against accuracy of trajectories, with a plain-Python explicit baseline.
+r"""Wall time against accuracy of trajectories: the compiled Radau IIA engine against scipy's best.
 
 The scene is the default of ``snail run`` (:func:`dynamics.scenes.load.load_scene`): the
 steel apparatus in 200 cSt oil on 2.4 degrees, kappa0 = 0.5, phi0 = 0.5 from rest,
 10 s. The inner cylinder falls to near contact in about 0.2 s and rocks there
 while 1 - kappa closes to about 1e-6: the full model's radial relaxation rate,
-~ (1 - kappa^2)^(-3/2) / (tau delta/a), makes it stiff.
+~ (1 - kappa^2)^(-3/2) / (tau delta/a), makes it stiff, and an explicit method
+is no fair baseline (RK45 needs some 1e5 steps per second of it).
 
-Measured:
+Solvers, each on the full model (2.1)-(2.4) with the closed forms (2.5)-(2.7) and
+on the reduced model (2.11), with the same state, tolerances (atol = rtol times
+:func:`dynamics.equations.full.typical_scales`; atol = rtol for the scaled
+reduced model) and one output row per step:
 
-* the full model (2.1)-(2.4) (jitted right-hand side and Jacobian) and the reduced
-  model (2.11), each with LSODA, BDF and Radau over a range of rtol; the error is
-  taken at t_end against a run of the same model at rtol 1e-12, as the largest of
-  |d phi|, |d X_b|/b, tau |d Omega_a|, tau |d Omega_b| and the relative error of 1 - kappa;
-* the baseline: the same full model written in plain Python (closed forms (2.5)-(2.7)
-  inline, no numba), integrated by ``solve_ivp``'s RK45 within a wall-time budget;
-  its right-hand side must equal the jitted one to rounding. Where RK45 does not
-  reach t_end in the budget, the comparison is made over the window it did reach:
-  the jitted model is rerun to that time and the fastest (method, rtol) at least as
-  accurate as the baseline gives the speed ratio, a lower bound for the whole run.
-  The same plain-Python model with LSODA (Jacobian by scipy's finite differences)
-  separates the gain of the jit from that of the implicit method;
-* ``snail run`` end to end as a subprocess, with the numba cache warm and, once,
-  cold (NUMBA_CACHE_DIR pointing at an empty folder: what a fresh install pays).
+``lsoda-python``
+    scipy's LSODA (``solve_ivp``) on the right-hand side written in plain Python
+    (:func:`plain_rhs`, :func:`plain_reduced_rhs`; no numba), with scipy's
+    finite-difference Jacobian: what a careful user writes without this package;
+``lsoda-jit``, ``radau-jit``
+    scipy's LSODA and Radau on the compiled right-hand side and Jacobian of
+    :mod:`dynamics.equations` (called from Python once per evaluation);
+``engine``
+    the compiled Radau IIA integrator, :func:`dynamics.engine.integrate`, on the
+    same compiled functions: no Python per step.
 
-Run ``python -m benchmarks.trajectories`` (or ``python benchmarks/trajectories.py``)
-from the project root; it writes ``benchmarks/results/trajectories.json`` and
-``trajectories.md``.
+The plain-Python right-hand sides must equal the compiled ones to 1e-12
+(asserted). Every (model, solver, rtol) is timed ``REPEATS`` times, the repeats
+interleaved (each round visits every configuration in a shuffled order, so that
+the load of a shared machine falls on all alike), and the median wall time is
+reported, with the median CPU time in the JSON. The error is taken at t_end
+against the engine at rtol 1e-12, as the largest of |d phi|, |d X_b|/b,
+tau |d Omega_a|, tau |d Omega_b| and the relative error of 1 - kappa; the two
+references (the engine and scipy's LSODA, jitted, both at 1e-12) are compared.
+
+Reported: per model, the table of times and errors; the ratio of each baseline's
+time to the engine's at the same rtol, and at equal accuracy (the baseline's
+cheapest run at least as accurate as the engine's at that rtol); and
+:func:`dynamics.simulation.simulate` on the default scene end to end (events,
+output columns). Run ``python -m benchmarks.trajectories`` from the project
+root; it writes ``benchmarks/results/trajectories.json`` and ``trajectories.md``.
 """
 
 from __future__ import annotations
 
 import datetime
 import math
-import os
-import resource
-import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
-from scipy.integrate import RK45, solve_ivp
+from scipy.integrate import solve_ivp
 
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish  # noqa: E402
-from benchmarks.reynolds import _machine  # noqa: E402
-from dynamics.equations import full  # noqa: E402
-from dynamics.equations.forces import closed_form  # noqa: E402
-from dynamics.scenes import load_scene  # noqa: E402
-from dynamics.simulate import simulate_full, simulate_reduced  # noqa: E402
+from benchmarks.publish import publish
+from benchmarks.reynolds import _machine
+from dynamics import engine
+from dynamics.equations import full, reduced
+from dynamics.equations.forces import closed_form
+from dynamics.equations.limits import GAP_FLOOR
+from dynamics.scenes import load_scene
+from dynamics.simulation import simulate
 
-__all__ = ["run", "plain_rhs", "to_markdown"]
+__all__ = ["plain_reduced_rhs", "plain_rhs", "run", "to_markdown"]
 
-METHODS = ("LSODA", "BDF", "Radau")
-RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
+SOLVERS = ("lsoda-python", "lsoda-jit", "radau-jit", "engine")
+BASELINES = SOLVERS[:-1]
+LABELS = {"lsoda-python": "scipy LSODA, plain-Python right-hand side",
+          "lsoda-jit": "scipy LSODA, compiled right-hand side and Jacobian",
+          "radau-jit": "scipy Radau, compiled right-hand side and Jacobian",
+          "engine": "compiled Radau IIA engine"}
+MODELS = ("full", "reduced")
+RTOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-11)
+HEADLINE_RTOL = 1e-8  # the scene's
 REFERENCE_RTOL = 1e-12
-REPEATS = 3  # timing samples per configuration; the median is reported
-BASELINE_BUDGET = 30.0  # s of wall time for the RK45 baseline
-ROOT = Path(__file__).resolve().parents[1]
-GOALS = {"speed_ratio": 30.0, "warm_scene_seconds": 1.0, "snail_run_seconds": 10.0}
+REPEATS = 5
+GOALS = {"warm_scene_seconds": 1.0}
 
 
 def plain_rhs(t, y, ap) -> np.ndarray:
@@ -104,160 +119,179 @@ def plain_rhs(t, y, ap) -> np.ndarray:
                      t_a / (0.5 * ap.m_a * a * a), omega_b_dot, b * omega_b])
 
 
-def _rhs_agreement(apparatus, rng) -> float:
-    """Largest relative difference, component by component, of the plain and the jitted right-hand side."""
-    p = full.params_array(apparatus)
-    model = full.model_arguments(closed_form())
-    worst = 0.0
-    for _ in range(200):
-        y = full.initial_state(apparatus, rng.uniform(0.0, 0.9999), rng.uniform(0, 2 * math.pi),
-                               rng.normal(0, 5), rng.normal(0, 5), rng.normal(0, 20), rng.normal(0, 20))
-        jit, plain = full.rhs(0.0, y, p, *model), plain_rhs(0.0, y, apparatus)
-        worst = max(worst, float(np.max(np.abs(plain - jit) / (np.abs(jit) + 1e-300 + 1e-12 * np.max(np.abs(jit))))))
-    return worst
+def plain_reduced_rhs(t, y, s, upsilon, mu_ratio) -> np.ndarray:
+    """(2.11a-d) in the stretched variables (xi, eta, Omega_a, Omega_b, X_b) of
+    :mod:`dynamics.equations.reduced`, in plain Python: rho^2 = 1 + xi^2 + eta^2,
+    W = (Omega_a + Omega_b)/2, D = Omega_b - Omega_a."""
+    xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
+    rho2 = 1.0 + xi * xi + eta * eta
+    rho = math.sqrt(rho2)
+    w, d = 0.5 * (omega_a + omega_b), omega_b - omega_a
+    return np.array([eta * w + 0.5 * xi * eta / rho2, -xi * w - 1.0 - 0.5 * xi * xi / rho2,
+                     (d * rho / 3.0 + xi / rho) / upsilon,
+                     (s + 0.5 * xi / rho - d * rho / 6.0) / (mu_ratio * upsilon), omega_b])
 
 
-def _end_state(columns, apparatus) -> np.ndarray:
-    """phi, X_b/b, tau Omega_a, tau Omega_b and log(1 - kappa) at the last sample."""
-    tau = apparatus.tau
-    return np.array([columns["phi"][-1], columns["x_b"][-1] / apparatus.b, tau * columns["omega_a"][-1],
-                     tau * columns["omega_b"][-1], math.log(columns["one_minus_kappa"][-1])])
+class _Problem:
+    """One model of the scene as every solver sees it: compiled and plain functions, y0, atol, end state."""
+
+    def __init__(self, model: str, scene):
+        ap, initial = scene.apparatus, scene.initial
+        self.name, self.apparatus, self.phi0 = model, ap, initial.phi
+        if model == "full":
+            self.args = full.run_args(ap, closed_form(), gap_floor=GAP_FLOOR)
+            self.fun, self.jac = full.rhs, full.jacobian
+            self.plain = lambda t, y: plain_rhs(t, y, ap)
+            self.y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
+                                         initial.omega_a, initial.omega_b)
+            self.typical = full.typical_scales(ap)
+            self.t_end = scene.run.t_end
+        else:
+            params = ap.reduced_params
+            self.args = params.args
+            self.fun, self.jac = reduced.rhs, reduced.jacobian
+            self.plain = lambda t, y: plain_reduced_rhs(t, y, params.s, params.upsilon, params.mu_ratio)
+            self.y0 = reduced.initial_state(initial.kappa, initial.phi, initial.omega_a * ap.tau,
+                                            initial.omega_b * ap.tau)
+            self.typical = np.ones(self.y0.size)
+            self.t_end = scene.run.t_end / ap.tau
+
+    def agreement(self, rng, samples: int = 200) -> float:
+        """Largest relative difference, component by component, of the plain and the compiled right-hand side."""
+        worst = 0.0
+        for _ in range(samples):
+            y = self.y0 + rng.normal(0.0, 1.0, self.y0.size) * np.maximum(np.abs(self.y0), self.typical) * 3.0
+            compiled, plain = self.fun(0.0, y, self.args), self.plain(0.0, y)
+            size = np.abs(compiled) + 1e-12 * np.max(np.abs(compiled)) + 1e-300
+            worst = max(worst, float(np.max(np.abs(plain - compiled) / size)))
+        return worst
+
+    def solve(self, solver: str, rtol: float) -> dict:
+        """One run to t_end; the end state and the counts."""
+        atol = rtol * self.typical
+        span = (0.0, self.t_end)
+        if solver == "engine":
+            run = engine.integrate(self.fun, self.jac, span, self.y0, args=self.args, rtol=rtol, atol=atol,
+                                   max_steps=10_000_000)
+            return {"t": float(run.t[-1]), "y": run.y[:, -1].copy(), "steps": run.steps, "nfev": run.nfev,
+                    "njev": run.njev, "success": bool(run.success)}
+        if solver == "lsoda-python":
+            sol = solve_ivp(self.plain, span, self.y0, method="LSODA", rtol=rtol, atol=atol)
+        else:
+            args = self.args
+            sol = solve_ivp(lambda t, y: self.fun(t, y, args), span, self.y0,
+                            method="LSODA" if solver == "lsoda-jit" else "Radau", rtol=rtol, atol=atol,
+                            jac=lambda t, y: self.jac(t, y, args))
+        return {"t": float(sol.t[-1]), "y": sol.y[:, -1].copy(), "steps": sol.t.size - 1, "nfev": int(sol.nfev),
+                "njev": int(sol.njev), "success": bool(sol.success)}
+
+    def end_state(self, y) -> np.ndarray:
+        """phi, X_b/b, tau Omega_a, tau Omega_b and log(1 - kappa) of a state."""
+        y = np.asarray(y, dtype=float)[:, None]
+        if self.name == "full":
+            ap = self.apparatus
+            o = full.observables(ap, y, self.phi0)
+            return np.array([o["phi"][0], o["x_b"][0] / ap.b, ap.tau * o["omega_a"][0], ap.tau * o["omega_b"][0],
+                             math.log(o["one_minus_kappa"][0])])
+        _, omk = reduced.stretched_to_kappa(math.hypot(y[0, 0], y[1, 0]))
+        return np.array([math.atan2(y[0, 0], y[1, 0]), y[4, 0], y[2, 0], y[3, 0], math.log(omk)])
 
 
 def _error(state, ref) -> float:
-    """Largest difference of two end states; phi modulo 2 pi (a single state cannot be unwrapped)."""
+    """Largest difference of two end states; phi modulo 2 pi (a single state cannot be unwrapped).
+
+    A difference of log(1 - kappa) is the relative error of 1 - kappa.
+    """
     diff = state - ref
     diff[0] = (diff[0] + math.pi) % (2.0 * math.pi) - math.pi
-    # a difference of log(1 - kappa) is the relative error of 1 - kappa
     return float(np.max(np.abs(diff)))
 
 
-def _timed(fn, repeats=REPEATS):
-    times, result = [], None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)), float(min(times)), result
+def _timed(fn, *args) -> tuple[float, float, object]:
+    """(wall s, CPU s, result) of one call ``fn(*args)``."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    result = fn(*args)
+    return time.perf_counter() - wall, time.process_time() - cpu, result
 
 
-def _sweep(simulate, apparatus, ref, rtols, repeats) -> list[dict]:
-    rows = []
-    for method in METHODS:
-        for rtol in rtols:
-            seconds, fastest, traj = _timed(lambda: simulate(rtol, method), repeats)
-            rows.append({"method": method, "rtol": rtol, "seconds": seconds, "fastest": fastest,
-                         "steps": traj.steps, "nfev": traj.nfev, "njev": traj.njev, "status": traj.status,
-                         "error": _error(_end_state(traj.columns, apparatus), ref)})
-    return rows
+def _equal_accuracy(rows: list[dict], rtol: float) -> dict:
+    """Per baseline, its cheapest run at least as accurate as the engine's at ``rtol``, and the time ratio."""
+    engine_row = next(r for r in rows if r["solver"] == "engine" and r["rtol"] == rtol)
+    out = {"engine_rtol": rtol, "engine_error": engine_row["error"], "engine_seconds": engine_row["seconds"]}
+    for solver in BASELINES:
+        good = [r for r in rows if r["solver"] == solver and r["success"] and r["error"] <= engine_row["error"]]
+        best = min(good, key=lambda r: r["seconds"]) if good else None
+        out[solver] = None if best is None else {"rtol": best["rtol"], "seconds": best["seconds"],
+                                                 "error": best["error"],
+                                                 "ratio": best["seconds"] / engine_row["seconds"]}
+    return out
 
 
-def _baseline_rk45(apparatus, initial, t_end, budget):
-    """Plain-Python RK45 stepped until t_end or the wall-time budget; (t reached, state, steps, nfev, seconds)."""
-    y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
-                            initial.omega_a, initial.omega_b)
-    typical = full.typical_scales(apparatus)
-    rtol = 1e-8
-    solver = RK45(lambda t, y: plain_rhs(t, y, apparatus), 0.0, y0, t_end, rtol=rtol, atol=rtol * typical)
-    start = time.perf_counter()
-    steps = 0
-    while solver.status == "running" and time.perf_counter() - start < budget:
-        solver.step()
-        steps += 1
-    return solver.t, solver.y.copy(), steps, solver.nfev, time.perf_counter() - start, rtol
+def run(rtols=RTOLS, repeats: int = REPEATS, models=MODELS, seed: int = 0) -> dict:
+    """Times and errors of every (model, solver, rtol), interleaved; plain data (JSON-serialisable).
 
-
-def _snail_run(env_extra: dict) -> tuple[float, float]:
-    """Wall and CPU (user + system) seconds of ``snail run`` as a subprocess.
-
-    On a shared machine the wall time carries other jobs' load; the CPU time does not.
-    """
-    with tempfile.TemporaryDirectory() as out:
-        env = {**os.environ, **env_extra, "PYTHONPATH": str(ROOT)}
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", "-o", out], cwd=ROOT, env=env,
-                       check=True, capture_output=True)
-        wall = time.perf_counter() - start
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
-def run(rtols=RTOLS, repeats=REPEATS, baseline_budget=BASELINE_BUDGET, subprocesses=True, seed=0) -> dict:
-    """Times and errors of every configuration, the baseline, and ``snail run`` as a subprocess.
-
-    Returns plain data (JSON-serialisable). Raises AssertionError if the
-    plain-Python right-hand side departs from the jitted one by more than 1e-12.
+    Raises AssertionError if a plain-Python right-hand side departs from the compiled one by more than 1e-12.
     """
     started = time.perf_counter()
+    rng = np.random.default_rng(seed)
     scene = load_scene()
-    ap, initial, t_end = scene.apparatus, scene.initial, scene.run.t_end
-    model = closed_form()
-    agreement = _rhs_agreement(ap, np.random.default_rng(seed))
-    assert agreement <= 1e-12, f"plain-Python right-hand side differs from the jitted one by {agreement:.2e}"
-
-    def full_run(rtol, method, t=t_end):
-        return simulate_full(ap, model, initial, t, rtol=rtol, method=method)
-
-    def reduced_run(rtol, method):
-        return simulate_reduced(ap.reduced_params, initial, t_end / ap.tau, apparatus=ap, rtol=rtol, method=method)
-
-    full_run(1e-8, "LSODA")  # warm-up: numba's cache (or compilation) is not timed
-    full_ref = _end_state(full_run(REFERENCE_RTOL, "Radau").columns, ap)
-    full_ref_lsoda = _end_state(full_run(REFERENCE_RTOL, "LSODA").columns, ap)
-    reduced_ref = _end_state(reduced_run(REFERENCE_RTOL, "Radau").columns, ap)
-    full_rows = _sweep(full_run, ap, full_ref, rtols, repeats)
-    reduced_rows = _sweep(lambda rtol, method: reduced_run(rtol, method), ap, reduced_ref, rtols, repeats)
-    default_seconds, default_fastest, _ = _timed(lambda: full_run(scene.run.rtol, "LSODA"), 5)
-
-    # baseline: RK45 on the plain-Python model, then the jitted model over the same window
-    t_reached, y_reached, steps, nfev, seconds, base_rtol = _baseline_rk45(ap, initial, t_end, baseline_budget)
-    window_ref = _end_state(full_run(REFERENCE_RTOL, "Radau", t_reached).columns, ap)
-    base_error = _error(_end_state(full.observables(ap, y_reached[:, None]), ap), window_ref)
-    window = []
-    for method in METHODS:
-        for rtol in (*rtols, 1e-12):
-            secs, fastest, traj = _timed(lambda: full_run(rtol, method, t_reached), repeats)
-            window.append({"method": method, "rtol": rtol, "seconds": secs, "fastest": fastest,
-                           "error": _error(_end_state(traj.columns, ap), window_ref)})
-    matching = [w for w in window if w["error"] <= base_error]
-    best = min(matching, key=lambda w: w["seconds"]) if matching else None
-    y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
-                            initial.omega_a, initial.omega_b)
-    typical = full.typical_scales(ap)
-    plain_lsoda_seconds, _, sol = _timed(lambda: solve_ivp(lambda t, y: plain_rhs(t, y, ap), (0.0, t_end), y0,
-                                                           method="LSODA", rtol=1e-8, atol=1e-8 * typical), 1)
-    plain_lsoda_error = _error(_end_state(full.observables(ap, sol.y[:, -1:]), ap), full_ref)
-    jit_lsoda = next(r for r in full_rows if r["method"] == "LSODA" and r["rtol"] == 1e-8)
-
-    snail = {}
-    if subprocesses:
-        _snail_run({})  # fills the default cache
-        warm = np.array([_snail_run({}) for _ in range(3)])
-        snail["warm_seconds"], snail["warm_cpu_seconds"] = (float(x) for x in np.median(warm, axis=0))
-        with tempfile.TemporaryDirectory() as cache:
-            snail["cold_seconds"], snail["cold_cpu_seconds"] = _snail_run({"NUMBA_CACHE_DIR": cache})
+    problems = {m: _Problem(m, scene) for m in models}
+    agreement = {m: p.agreement(rng) for m, p in problems.items()}
+    for m, worst in agreement.items():
+        assert worst <= 1e-12, f"plain-Python {m} right-hand side differs from the compiled one by {worst:.2e}"
+    references, reference_check = {}, {}
+    for m, p in problems.items():
+        p.solve("engine", 1e-8)  # warm-up: numba's cache (or compilation) is not timed
+        references[m] = p.end_state(p.solve("engine", REFERENCE_RTOL)["y"])
+        reference_check[m] = _error(p.end_state(p.solve("lsoda-jit", REFERENCE_RTOL)["y"]), references[m])
+    configs = [(m, s, r) for m in models for s in SOLVERS for r in rtols]
+    samples = {c: [] for c in configs}
+    outcome = {}
+    for _ in range(repeats):
+        for i in rng.permutation(len(configs)):
+            m, s, r = configs[i]
+            wall, cpu, result = _timed(problems[m].solve, s, r)
+            samples[configs[i]].append((wall, cpu))
+            outcome[configs[i]] = result
+    rows = {m: [] for m in models}
+    for (m, s, r), times in samples.items():
+        result, p = outcome[m, s, r], problems[m]
+        reached = result["t"] >= p.t_end * (1.0 - 1e-12)
+        error = _error(p.end_state(result["y"]), references[m]) if reached else math.nan
+        rows[m].append({"solver": s, "rtol": r, "seconds": float(np.median([w for w, _ in times])),
+                        "cpu_seconds": float(np.median([c for _, c in times])),
+                        "fastest": float(min(w for w, _ in times)), "steps": result["steps"],
+                        "nfev": result["nfev"], "njev": result["njev"], "success": result["success"] and reached,
+                        "error": error})
+    headline = {}
+    for m in models:
+        by = {(r["solver"], r["rtol"]): r for r in rows[m]}
+        engine_seconds = by["engine", HEADLINE_RTOL]["seconds"] if HEADLINE_RTOL in rtols else math.nan
+        headline[m] = {
+            "same_rtol": {s: {"seconds": by[s, HEADLINE_RTOL]["seconds"], "error": by[s, HEADLINE_RTOL]["error"],
+                              "ratio": by[s, HEADLINE_RTOL]["seconds"] / engine_seconds}
+                          for s in SOLVERS} if HEADLINE_RTOL in rtols else {},
+            "equal_accuracy": _equal_accuracy(rows[m], HEADLINE_RTOL) if HEADLINE_RTOL in rtols else {},
+        }
+    scene_runs = []
+    ap, initial, settings = scene.apparatus, scene.initial, scene.run
+    for _ in range(repeats):
+        wall, _, trajectory = _timed(lambda: simulate(ap, initial, settings.t_end, forces=closed_form(),
+                                                      rtol=settings.rtol))
+        scene_runs.append(wall)
     return {
         "machine": _machine(),
-        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "scene": {"apparatus": "steel", "nu": ap.nu, "alpha_deg": math.degrees(ap.alpha), "kappa0": initial.kappa,
-                  "phi0": initial.phi, "t_end": t_end, "tau": ap.tau, "delta_over_a": ap.delta_over_a},
-        "settings": {"rtols": list(rtols), "reference_rtol": REFERENCE_RTOL, "repeats": repeats,
-                     "baseline_budget": baseline_budget},
-        "reference_radau_vs_lsoda": _error(full_ref_lsoda, full_ref),
+                  "phi0": initial.phi, "t_end": settings.t_end, "tau": ap.tau, "delta_over_a": ap.delta_over_a},
+        "settings": {"rtols": list(rtols), "headline_rtol": HEADLINE_RTOL, "reference_rtol": REFERENCE_RTOL,
+                     "repeats": repeats, "solvers": LABELS},
         "rhs_agreement": agreement,
-        "full": full_rows,
-        "reduced": reduced_rows,
-        "default_scene_seconds": default_seconds,
-        "default_scene_fastest": default_fastest,
-        "baseline": {"method": "RK45", "rtol": base_rtol, "t_reached": float(t_reached), "steps": steps,
-                     "nfev": nfev, "seconds": seconds, "error": base_error,
-                     "completed": bool(t_reached >= t_end)},
-        "window": window,
-        "equal_accuracy": None if best is None else {**best, "speed_ratio": seconds / best["seconds"]},
-        "plain_lsoda": {"seconds": plain_lsoda_seconds, "error": plain_lsoda_error,
-                        "jit_seconds": jit_lsoda["seconds"], "ratio": plain_lsoda_seconds / jit_lsoda["seconds"]},
-        "snail_run": snail,
+        "reference_engine_vs_lsoda": reference_check,
+        **rows,
+        "headline": headline,
+        "simulate_scene": {"seconds": float(np.median(scene_runs)), "fastest": float(min(scene_runs)),
+                           "steps": trajectory.steps, "status": trajectory.status},
         "run_seconds": time.perf_counter() - started,
     }
 
@@ -267,54 +301,59 @@ def _table(header, lines) -> list[str]:
             *("| " + " | ".join(map(str, line)) + " |" for line in lines), ""]
 
 
+def _headline_lines(results: dict, model: str) -> list[list]:
+    head = results["headline"][model]
+    same, equal = head["same_rtol"], head["equal_accuracy"]
+    lines = []
+    for s in SOLVERS:
+        row = same[s]
+        match = equal.get(s)
+        if s == "engine":
+            at_equal = "-"
+        elif match is None:
+            at_equal = "not reached"
+        else:
+            at_equal = f"{match['ratio']:.1f} (rtol {match['rtol']:g}, {match['seconds']:.3g} s)"
+        lines.append([LABELS[s], f"{row['seconds']:.3g}", f"{row['error']:.1e}",
+                      "1" if s == "engine" else f"{row['ratio']:.1f}", at_equal])
+    return lines
+
+
 def to_markdown(results: dict) -> str:
-    m, sc, base, eq = results["machine"], results["scene"], results["baseline"], results["equal_accuracy"]
-    snail, plain = results["snail_run"], results["plain_lsoda"]
-    out = ["# Trajectories: wall time against accuracy", "",
-           f"{m['cpu']}, {m['cores']} cores; Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, "
-           f"numba {m['numba']}. {results['date']}; the run took {results['run_seconds']:.0f} s.", "",
+    m, sc, st = results["machine"], results["scene"], results["settings"]
+    rtol = st["headline_rtol"]
+    out = ["# Trajectories: the compiled engine against scipy's solvers", "",
+           (f"{m['cpu']}, {m['cores']} cores; Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, "
+            f"numba {m['numba']}. {results['date']}; the run took {results['run_seconds']:.0f} s."), "",
            f"Default scene: steel, nu = {sc['nu']:g} m^2/s, {sc['alpha_deg']:g} deg, kappa0 = {sc['kappa0']}, "
            f"phi0 = {sc['phi0']}, from rest, {sc['t_end']:g} s (tau = {sc['tau']:.4g} s, delta/a = "
-           f"{sc['delta_over_a']:.3f}). Error at t_end against the same model at rtol {REFERENCE_RTOL:g}: the "
-           "largest of |d phi|, |d X_b|/b, tau |d Omega_a|, tau |d Omega_b| and the relative error of 1 - kappa. "
-           f"Times are medians of {results['settings']['repeats']} runs, JIT cache warm. The two references "
-           f"(Radau, LSODA at {REFERENCE_RTOL:g}) differ by {results['reference_radau_vs_lsoda']:.1e}.", ""]
-    goal_lines = []
-    if eq is not None:
-        goal_lines.append([f">= {GOALS['speed_ratio']:g}x faster than the plain-Python RK45 baseline at equal accuracy",
-                           f"{eq['speed_ratio']:.0f}x over the first {base['t_reached']:.3g} s "
-                           f"({eq['method']}, rtol {eq['rtol']:g}: {eq['seconds']:.3g} s, error {eq['error']:.1e})",
-                           "yes" if eq["speed_ratio"] >= GOALS["speed_ratio"] else "no"])
-    goal_lines.append([f"default scene < {GOALS['warm_scene_seconds']:g} s, cache warm",
-                       f"{results['default_scene_seconds']:.3f} s (fastest {results['default_scene_fastest']:.3f} s)",
-                       "yes" if results["default_scene_seconds"] < GOALS["warm_scene_seconds"] else "no"])
-    if snail:
-        goal_lines.append([f"`snail run` end to end < {GOALS['snail_run_seconds']:g} s",
-                           f"{snail['warm_seconds']:.2f} s warm (CPU {snail['warm_cpu_seconds']:.2f} s); "
-                           f"{snail['cold_seconds']:.1f} s with an empty numba cache "
-                           f"(CPU {snail['cold_cpu_seconds']:.1f} s)",
-                           "yes" if snail["warm_seconds"] < GOALS["snail_run_seconds"] else "no"])
-    out += ["## Goals", ""] + _table(["goal", "measured", "met"], goal_lines)
-    for key, title in (("full", "Full model (2.1)-(2.4), jitted"), ("reduced", "Reduced model (2.11)")):
-        out += [f"## {title}", ""]
-        out += _table(["method", "rtol", "wall s", "steps", "nfev", "njev", "error"],
-                      [[r["method"], f"{r['rtol']:g}", f"{r['seconds']:.3g}", r["steps"], r["nfev"], r["njev"],
-                        f"{r['error']:.1e}"] for r in results[key]])
-    out += ["## Baseline: plain Python, RK45", "",
-            f"The plain-Python right-hand side equals the jitted one to {results['rhs_agreement']:.1e} (relative, "
-            f"200 random states). RK45 at rtol {base['rtol']:g} was given {base['seconds']:.0f} s of wall time: "
-            + (f"it completed the {sc['t_end']:g} s." if base["completed"] else
-               f"it reached t = {base['t_reached']:.4g} s of {sc['t_end']:g} s in {base['steps']} steps "
-               f"({base['nfev']} evaluations), with error {base['error']:.1e} there. The stiffness (the radial "
-               "relaxation rate grows as (1 - kappa^2)^(-3/2) near contact) bounds its step.")
-            + " The jitted model over the same window:", ""]
-    out += _table(["method", "rtol", "wall s", "error", "baseline / this"],
-                  [[w["method"], f"{w['rtol']:g}", f"{w['seconds']:.3g}", f"{w['error']:.1e}",
-                    f"{base['seconds'] / w['seconds']:.0f}"] for w in results["window"]])
-    out += [f"The same plain-Python model with LSODA (scipy's finite-difference Jacobian) runs the whole scene at "
-            f"rtol 1e-8 in {plain['seconds']:.2f} s (error {plain['error']:.1e}), {plain['ratio']:.1f} times the "
-            f"jitted LSODA's {plain['jit_seconds']:.3f} s: this ratio is the jit's share of the gain over the "
-            "baseline, the rest is the implicit method's.", ""]
+           f"{sc['delta_over_a']:.3f}), closed forms (2.5)-(2.7). Error at t_end against the engine at rtol "
+           f"{st['reference_rtol']:g}: the largest of |d phi|, |d X_b|/b, tau |d Omega_a|, tau |d Omega_b| and "
+           "the relative error of 1 - kappa. Wall times are medians of "
+           f"{st['repeats']} interleaved repeats, numba cache warm, one output row per step. The references "
+           "(engine and scipy LSODA, both at rtol 1e-12) differ by "
+           + ", ".join(f"{v:.1e} ({k})" for k, v in results["reference_engine_vs_lsoda"].items())
+           + "; the plain-Python right-hand sides equal the compiled ones to "
+           + ", ".join(f"{v:.1e} ({k})" for k, v in results["rhs_agreement"].items()) + " (relative).", ""]
+    for model, title in (("full", "Full model (2.1)-(2.4)"), ("reduced", "Reduced model (2.11)")):
+        if model not in results["headline"] or not results["headline"][model]["same_rtol"]:
+            continue
+        out += [f"## Headline, {title}, rtol {rtol:g}", ""]
+        out += _table(["solver", "wall s", "error", "time / engine's, same rtol",
+                       "time / engine's, equal accuracy"], _headline_lines(results, model))
+    for model, title in (("full", "Full model (2.1)-(2.4)"), ("reduced", "Reduced model (2.11)")):
+        if model not in results:
+            continue
+        out += [f"## {title}, every rtol", ""]
+        out += _table(["solver", "rtol", "wall s", "CPU s", "steps", "nfev", "njev", "error"],
+                      [[r["solver"], f"{r['rtol']:g}", f"{r['seconds']:.3g}", f"{r['cpu_seconds']:.3g}", r["steps"],
+                        r["nfev"], r["njev"], f"{r['error']:.1e}"] for r in results[model]])
+    scene = results["simulate_scene"]
+    out += ["## The scene through `dynamics.simulation.simulate`", "",
+            f"The default scene through `simulate` (the engine with the validity and turn events and the output "
+            f"columns) at rtol {rtol:g}: {scene['seconds']:.3f} s (fastest {scene['fastest']:.3f} s, "
+            f"{scene['steps']} steps, {scene['status']}); goal < {GOALS['warm_scene_seconds']:g} s warm: "
+            + ("met." if scene["seconds"] < GOALS["warm_scene_seconds"] else "not met."), ""]
     return "\n".join(out)
 
 
