@@ -1,0 +1,187 @@
+"""The documentation site builds with warnings as errors, what it generates from the code is complete,
+and its Python examples run as printed.
+
+One build of ``docs/site`` serves the slow tests here: the pages, the API reference,
+the command-line and scene references, and the gallery with one example run and
+the others shown without running (``SNAIL_DOCS_EXAMPLES``). It runs in a mirror of
+the repository under a temporary folder (symbolic links to the sources), so that
+its outputs (the gallery's pages, the generated API pages, the HTML) never touch
+the working tree. A page with a reference to a missing function is planted in the
+mirror: the build must fail on it, and on nothing else.
+
+The build takes about a minute with numba's cache warm: those tests are marked slow.
+The code blocks fenced as ```python in the pages run in the default test run, as the
+README's do; a block that needs a file of the reader's is a ``{code-block}`` instead.
+"""
+
+from __future__ import annotations
+
+import argparse
+import html
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SITE = ROOT / "docs" / "site"
+EXECUTED = "plot_04_reduced_runaway"  # a short example (about 2 s) whose figure the build must contain
+GENERATED = {"_build", "auto_examples", "sg_execution_times.rst", "__pycache__"}
+PLANTED = """---
+orphan: true
+---
+# A planted page
+
+It refers to {py:func}`lubrication.forces.no_such_function`, which does not exist.
+"""
+
+
+def _mirror(target: Path) -> Path:
+    """``target`` laid out like the repository: links to every source, real folders where the build writes."""
+    for entry in ROOT.iterdir():
+        if entry.name not in ("docs", ".git"):
+            (target / entry.name).symlink_to(entry)
+    docs = target / "docs"
+    docs.mkdir()
+    for entry in (ROOT / "docs").iterdir():
+        if entry.name != "site":
+            (docs / entry.name).symlink_to(entry)
+    site = docs / "site"
+    site.mkdir()
+    for entry in SITE.iterdir():
+        if entry.name in GENERATED or entry.name == "api":
+            continue
+        (site / entry.name).symlink_to(entry)
+    (site / "api").mkdir()
+    for entry in (SITE / "api").iterdir():
+        if entry.name != "generated":
+            (site / "api" / entry.name).symlink_to(entry)
+    (site / "planted.md").write_text(PLANTED)
+    return site
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory):
+    """Build the mirrored site once: (return code, warning lines, HTML folder, standard error)."""
+    for module in ("sphinx", "myst_parser", "numpydoc", "sphinx_gallery"):
+        pytest.importorskip(module, reason="the docs extra: pip install '.[docs]'")
+    site = _mirror(tmp_path_factory.mktemp("repository"))
+    out = site / "_build" / "html"
+    env = dict(os.environ, SNAIL_DOCS_EXAMPLES=EXECUTED, MPLBACKEND="Agg")
+    done = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
+                           str(site), str(out)], check=False, capture_output=True, text=True, env=env,
+                          timeout=1800)
+    warnings = [line for line in done.stderr.splitlines() if "WARNING" in line or "ERROR" in line]
+    return done.returncode, warnings, out, done.stderr
+
+
+def _text(page: Path) -> str:
+    return html.unescape(re.sub(r"<[^>]+>", "", page.read_text()))
+
+
+@pytest.mark.slow
+def test_a_broken_reference_fails_the_build(build):
+    code, warnings, _, stderr = build
+    assert code != 0, "a reference to a missing function must fail a build with -W"
+    assert any("no_such_function" in w and "reference target not found" in w for w in warnings), stderr[-3000:]
+
+
+@pytest.mark.slow
+def test_nothing_else_warns(build):
+    _, warnings, _, stderr = build
+    others = [w for w in warnings if "no_such_function" not in w]
+    assert not others, "\n".join(others) + "\n" + stderr[-3000:]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("page", ["index", "getting_started", "physics", "force_models", "equations_of_motion",
+                                  "inertia", "contact", "cavitation", "corrections", "speed_accuracy", "sweeps",
+                                  "cli", "scenes", "validation", "building", "citing", "api/index",
+                                  "auto_examples/index"])
+def test_the_page_is_built(build, page):
+    _, _, out, _ = build
+    assert (out / f"{page}.html").is_file()
+
+
+@pytest.mark.slow
+def test_the_executed_example_has_its_figure_and_output(build):
+    _, _, out, _ = build
+    page = (out / "auto_examples" / f"{EXECUTED}.html").read_text()
+    images = re.findall(rf"sphx_glr_{EXECUTED}_\d+\.png", page)
+    assert images, "the example's figure is missing from its page"
+    assert all((out / "_images" / name).is_file() for name in set(images))
+    assert "runaway" in _text(out / "auto_examples" / f"{EXECUTED}.html")  # its printed output
+
+
+def _documented_actions(parser: argparse.ArgumentParser) -> list[argparse.Action]:
+    return [a for a in parser._actions
+            if not isinstance(a, argparse._HelpAction | argparse._SubParsersAction)]
+
+
+@pytest.mark.slow
+def test_the_command_line_reference_has_every_subcommand_and_option(build):
+    from dynamics.app.cli import build_parser
+
+    _, _, out, _ = build
+    page = (out / "cli.html").read_text()
+    text = " ".join(_text(out / "cli.html").split())
+    parser = build_parser()
+    commands = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+    assert set(commands) >= {"forces", "run", "sweep", "validate", "corrections"}
+    missing = [f"usage of snail {name}" for name in commands if f"usage: snail {name}" not in text]
+    for name, sub in commands.items():
+        for action in _documented_actions(sub):
+            # an entry of Sphinx's option directive for each flag, and the help text argparse prints
+            anchors = [f'id="cmdoption-snail-{name}-{flag.lstrip("-")}"' for flag in action.option_strings]
+            anchors = anchors or [f'id="cmdoption-snail-{name}-arg-{action.dest}"']
+            missing += [f"snail {name}: {anchor}" for anchor in anchors if anchor not in page]
+            words = " ".join((action.help or "").split())[:40]
+            if words not in text:
+                missing.append(f"snail {name} {action.dest}: help {words!r}")
+    assert not missing
+
+
+@pytest.mark.slow
+def test_the_scene_reference_has_every_key_with_its_range(build):
+    from dynamics.scenes.schema import SECTIONS
+
+    _, _, out, _ = build
+    text = _text(out / "scenes.html")
+    missing = [f"[{section}]" for section in SECTIONS if f"[{section}]" not in text]
+    for section, keys in SECTIONS.items():
+        block = text[text.index(f"[{section}]"):]
+        missing += [f"{section}.{key}: {rule.allowed()}" for key, rule in keys.items()
+                    if key not in block or rule.allowed() not in block]
+    assert not missing
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("module", ["lubrication.forces", "dynamics.simulation", "dynamics.scenes.schema",
+                                    "dynamics.engine", "dynamics.contact.reduced", "dynamics.app.run"])
+def test_the_api_reference_documents_what_the_module_exports(build, module):
+    import importlib
+
+    _, _, out, _ = build
+    page = (out / "api" / "generated" / f"{module}.html").read_text()
+    exported = importlib.import_module(module).__all__
+    # each name is either documented on the page (an anchor) or linked to where it is defined
+    missing = [name for name in exported if f'id="{module}.{name}"' not in page and f">{name}<" not in page]
+    assert not missing
+
+
+PAGES_WITH_CODE = ["index.md", "getting_started.md"]
+BLOCKS = [(page, code) for page in PAGES_WITH_CODE
+          for code in re.findall(r"```python\n(.*?)```", (SITE / page).read_text(), flags=re.DOTALL)]
+
+
+def test_the_pages_have_python_examples():
+    assert len(BLOCKS) >= 3
+
+
+@pytest.mark.parametrize(("page", "code"), BLOCKS, ids=[f"{page}-{i}" for i, (page, _) in enumerate(BLOCKS)])
+def test_a_python_example_of_the_pages_runs(page, code, capsys):
+    exec(compile(code, page, "exec"), {})  # noqa: S102 - the pages are ours
+    assert capsys.readouterr().out.strip()  # each example prints its result
