@@ -25,30 +25,31 @@ METHODS = ("radau", "Radau", "BDF", "LSODA")
 
 
 def integrate(fun, jac, t_span, y0, *, args=(), method: str = "radau", rtol=1e-8, atol=1e-10, events=None,
-              terminal=0, direction=0, t_eval=None, max_steps: int = 2_000_000, chunk_steps: int = 20_000,
-              progress=None) -> Result:
+              terminal=0, direction=0, t_eval=None, steps=None, max_steps: int = 2_000_000,
+              chunk_steps: int = 20_000, progress=None) -> Result:
     """Integrate y' = fun(t, y, args) with ``method`` (:data:`METHODS`); see :func:`dynamics.engine.integrate`."""
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
     if method == "radau":
         return engine.integrate(fun, jac, t_span, y0, args=args, rtol=rtol, atol=atol, events=events,
-                                terminal=terminal, direction=direction, t_eval=t_eval, max_steps=max_steps,
-                                chunk_steps=chunk_steps, progress=progress)
+                                terminal=terminal, direction=direction, t_eval=t_eval, steps=steps,
+                                max_steps=max_steps, chunk_steps=chunk_steps, progress=progress)
     return _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events or no_events, terminal, direction,
-                  t_eval, max_steps, progress)
+                  t_eval, steps, max_steps, progress)
 
 
-def _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events, terminal, direction, t_eval, max_steps,
+def _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events, terminal, direction, t_eval, steps, max_steps,
            progress) -> Result:
     from scipy import integrate as si
     from scipy.optimize import brentq
 
     inputs = check_inputs(fun, jac, events, t_span, y0, args=args, rtol=rtol, atol=atol, t_eval=t_eval,
-                          terminal=terminal, direction=direction, max_steps=max_steps)
+                          steps=steps, terminal=terminal, direction=direction, max_steps=max_steps)
     t0, t_end, y0 = inputs["t0"], inputs["t_end"], inputs["y0"]
     terminal, direction = inputs["terminal"], inputs["direction"]
-    samples = inputs["t_eval"] if not inputs["every_step"] else None
+    every_step = inputs["every_step"]
+    samples = inputs["t_eval"]
     solver = getattr(si, method)(lambda t, y: fun(t, y, args), t0, y0, t_end, rtol=inputs["rtol"],
                                  atol=inputs["atol"], jac=lambda t, y: jac(t, y, args))
     rows_t, rows_y, rows_kind, rows_event = [], [], [], []
@@ -61,10 +62,10 @@ def _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events, terminal, dir
 
     g_old = np.asarray(events(t0, y0, args), dtype=float)
     counts = np.zeros(g_old.size, dtype=np.int64)
-    sampled_at_start = samples is not None and samples.size and samples[0] == t0
-    if samples is None or sampled_at_start:  # as the engine: a start row only where rows are asked for
+    sampled_at_start = bool(samples.size) and samples[0] == t0
+    if every_step or sampled_at_start:  # as the engine: a start row only where rows are asked for
         row(t0, y0, START | (SAMPLE if sampled_at_start else 0))
-    next_sample = int(bool(sampled_at_start))
+    next_sample = int(sampled_at_start)
     code, stop_event, steps = engine.REACHED_END, -1, 0
     last_t, last_y = t0, y0.copy()
     interrupts = Interrupts()
@@ -103,21 +104,24 @@ def _scipy(fun, jac, t_span, y0, args, method, rtol, atol, events, terminal, dir
                 if terminal[i] and counts[i] >= terminal[i]:
                     stop_at, stop_event = t_hit, i
                     break
-            if samples is not None:
-                due = np.searchsorted(samples, stop_at, side="right")
-                for ts in samples[next_sample:due]:
-                    row(ts, dense(ts), SAMPLE)
-                next_sample = due
             for t_hit, i in sorted(hits):
                 if t_hit > stop_at:
                     break
+                due = np.searchsorted(samples, t_hit, side="right")
+                for ts in samples[next_sample:due]:
+                    row(ts, dense(ts), SAMPLE)
+                next_sample = due
                 row(t_hit, dense(t_hit), EVENT | (END if i == stop_event else 0), i)
             if stop_event >= 0:
                 code = engine.TERMINAL_EVENT
                 break
-            if samples is None:
-                row(t_new, y_new, STEP | (END if t_new >= t_end else 0))
-            elif t_new >= t_end:
+            due = np.searchsorted(samples, t_new, side="right")
+            for ts in samples[next_sample:due]:
+                row(ts, dense(ts), SAMPLE)
+            next_sample = due
+            if every_step:
+                row(t_new, y_new, STEP)
+            if t_new >= t_end:
                 rows_kind[-1] |= END
             g_old = g_new
             last_t, last_y = t_new, y_new

@@ -32,6 +32,7 @@ from dynamics.equations.limits import LIMIT_EVENTS, Limits, inertia_report, limi
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.integrate import METHODS, integrate
+from dynamics.regime import classify
 from lubrication.geometry import check_range
 
 __all__ = ["PHASE_CODES", "Initial", "Trajectory", "simulate"]
@@ -74,8 +75,14 @@ class Trajectory:
     dimensionless : bool
     groups : dict
         s, upsilon, mu (and delta_over_a with an apparatus).
+    regime : str
+        The motion the run settled into (:func:`dynamics.regime.classify`),
+        judged on every integrator step whatever rows were output.
+    evidence : dict
+        The numbers that decided the regime.
     info : dict
-        What a table cannot hold (contact switches, the chosen model, ...).
+        What a table cannot hold (contact switches, the chosen model, the
+        estimated inertial error, ...).
     """
 
     columns: dict
@@ -95,6 +102,8 @@ class Trajectory:
     tau: float
     dimensionless: bool
     groups: dict = field(default_factory=dict)
+    regime: str = ""
+    evidence: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
 
     @property
@@ -138,7 +147,8 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         Relative tolerance, in [100 eps, 0.1].
     output_interval : float, optional
         Output rows at 0, dt, 2 dt, ... from the dense output (and at every
-        event); by default one row per integrator step.
+        event); by default one row per integrator step. The regime and the
+        inertia diagnostics are judged on every step either way.
     t_eval : array_like, optional
         Output rows at these increasing times in [0, t_end] instead (and at every event).
     max_steps : int
@@ -237,6 +247,17 @@ def _check_start(initial: Initial, limits: Limits, contact, equations: str) -> N
         raise ValueError(msg)
 
 
+def _check_reynolds_at_start(g: np.ndarray, limits: Limits) -> None:
+    """Refuse initial rates that put the run past the Reynolds limit at t = 0 (event values ``g``:
+    the Reynolds event is the second, max_gap_reynolds - Re*), unless the limits only warn."""
+    if limits.stops and g[1] < 0.0:
+        msg = (f"initial.omega_a, initial.omega_b and initial.phi_dot give a gap Reynolds number "
+               f"Re* = {limits.reynolds - g[1]:.4g} at t = 0, above run.max_gap_reynolds = {limits.reynolds:g}: "
+               "quasi-steady Stokes forces do not hold there; lower the initial rates, raise "
+               "max_gap_reynolds, or set on_invalid = 'warn'")
+        raise ValueError(msg)
+
+
 class _Run:
     """The settings every model's run shares, and the conversion of its rows to a Trajectory."""
 
@@ -264,8 +285,8 @@ class _Run:
             if isinstance(contact, RoughContact):
                 from dynamics.contact.rough import run_rough_contact as runner
             fields = runner(params, contact, t_end_tau, initial.kappa, initial.phi, *rates, limits=self.limits,
-                            method=self.method, rtol=self.rtol, t_eval=t_eval, max_steps=self.max_steps,
-                            progress=progress)
+                            method=self.method, rtol=self.rtol, t_eval=t_eval, steps=True,
+                            max_steps=self.max_steps, progress=progress)
             return self._contact_trajectory(fields, "reduced", "closed-form", params)
         per_rate = (0.0, 0.0)
         if not self.dimensionless:
@@ -275,10 +296,12 @@ class _Run:
         args = reduced.run_args(params, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
                                 reynolds_per_rate=per_rate, x_b_limit=2.0 * math.pi * limits.max_turns)
         y0 = reduced.initial_state(initial.kappa, initial.phi, *rates, one_minus_kappa0=initial.one_minus_kappa)
+        _check_reynolds_at_start(reduced.events(0.0, y0, args), limits)
         stops = int(limits.stops)
         run = integrate(reduced.rhs, reduced.jacobian, (0.0, t_end_tau), y0, args=args, method=self.method,
                         rtol=self.rtol, atol=self.rtol, events=reduced.events, terminal=(stops, stops, 1, 0, 0),
-                        direction=(-1, -1, -1, 0, 1), t_eval=t_eval, max_steps=self.max_steps, progress=progress)
+                        direction=(-1, -1, -1, 0, 1), t_eval=t_eval, steps=True, max_steps=self.max_steps,
+                        progress=progress)
         cols = reduced.columns(run.y, initial.phi, args)
         fields = {"t": run.t, "kind": run.kind, "event_names": _names(run.event, reduced.EVENT_NAMES), **cols,
                   "stop": reduced.EVENT_NAMES[run.stop_event] if run.stop_event >= 0 else "",
@@ -292,7 +315,7 @@ class _Run:
             from dynamics.contact import full as full_contact
 
             fields = full_contact.run_full_contact(ap, model, contact, initial, self.t_end, limits=self.limits,
-                                                   method=self.method, rtol=self.rtol, t_eval=self.t_eval,
+                                                   method=self.method, rtol=self.rtol, t_eval=self.t_eval, steps=True,
                                                    max_steps=self.max_steps, progress=self.progress,
                                                    frame_terms=self.frame_terms)
             return self._contact_trajectory(fields, "full", model.name, ap.reduced_params)
@@ -301,10 +324,11 @@ class _Run:
                              max_turns=limits.max_turns, frame_terms=self.frame_terms)
         y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                                 initial.omega_a, initial.omega_b, one_minus_kappa=initial.gap)
+        _check_reynolds_at_start(full.events(0.0, y0, args), limits)
         stops = int(limits.stops)
         run = integrate(full.rhs, full.jacobian, (0.0, self.t_end), y0, args=args, method=self.method,
                         rtol=self.rtol, atol=self.rtol * args[2], events=full.events,
-                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=self.t_eval,
+                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=self.t_eval, steps=True,
                         max_steps=self.max_steps, progress=self.progress)
         obs = full.observables(ap, run.y, initial.phi)
         fields = {"t": run.t / self.tau, "kind": run.kind, "event_names": _names(run.event, full.EVENT_NAMES),
@@ -322,11 +346,6 @@ class _Run:
     def _contact_trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
         fields = dict(fields, stop=fields["stop_event"], status_code=fields["status"])
         trajectory = self._trajectory(fields, equations, forces, params)
-        keep = self._keep(fields)
-        trajectory.columns["phase"] = np.array([PHASE_CODES[p] for p in fields["phase"][keep]], dtype=float)
-        for name in ("c_eps", "c_chi", "theta_a", "theta_b"):
-            if name in fields:
-                trajectory.columns[name] = fields[name][keep]
         trajectory.info.update(phase_codes=PHASE_CODES, final_phase=str(fields["phase"][-1]),
                                switches=[{"t": sw.t * self.tau, "from": sw.old, "to": sw.new}
                                          for sw in fields["switches"]])
@@ -334,12 +353,16 @@ class _Run:
 
     @staticmethod
     def _keep(fields: dict) -> np.ndarray:
-        """Rows to output: the crossings of the vertical keep phi continuous, and are not rows a user asked for."""
+        """Rows to keep: the crossings of the vertical keep phi continuous, and are not rows a user asked for."""
         kind, names = fields["kind"], fields["event_names"]
         return ~(((kind & EVENT) != 0) & (names == "turn") & ((kind & ~EVENT) == 0))
 
     def _trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
-        """Columns in the output units from scaled rows (t in tau, rates in 1/tau, X_b in b)."""
+        """Columns in the output units from scaled rows (t in tau, rates in 1/tau, X_b in b).
+
+        The regime and the inertia diagnostics are taken over every step; with
+        requested output times, the rows that are only steps are then dropped.
+        """
         tau = self.tau
         kind, names = fields["kind"], fields["event_names"]
         keep = self._keep(fields)
@@ -355,6 +378,11 @@ class _Run:
                    "chi": phi - alpha, "kappa": kappa, "one_minus_kappa": fields["one_minus_kappa"][keep],
                    "phi": phi, "omega_a": fields["omega_a"][keep] / tau, "omega_b": fields["omega_b"][keep] / tau,
                    "kappa_dot": fields["kappa_dot"][keep] / tau, "phi_dot": fields["phi_dot"][keep] / tau}
+        if "phase" in fields:
+            columns["phase"] = np.array([PHASE_CODES[p] for p in fields["phase"][keep]], dtype=float)
+            for name in ("c_eps", "c_chi", "theta_a", "theta_b"):
+                if name in fields:
+                    columns[name] = fields[name][keep]
         if self.t_eval is not None:
             # rows at requested times carry those times exactly, not their round trip through tau
             sampled = np.nonzero((kind[keep] & SAMPLE) != 0)[0]
@@ -370,12 +398,27 @@ class _Run:
                                 steps=int(fields["steps"]), nfev=int(fields["nfev"]), njev=int(fields["njev"]),
                                 nlu=int(fields["nlu"]), wall_time_s=0.0, tau=tau, dimensionless=self.dimensionless,
                                 groups=_groups(self.system, params))
-        if not self.dimensionless and columns["t"].size:
-            trajectory.info["inertia"] = inertia_report(self.system, columns)
+        kept = kind[keep]
+        if self.t_eval is not None:  # judge on the steps, as in a run without requested times
+            trajectory.columns, trajectory.rows = _rows(columns, rows, (kept & ~SAMPLE) != 0)
+        if trajectory.t.size:
+            trajectory.regime, trajectory.evidence = classify(trajectory)
+            if not self.dimensionless:
+                trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns)
         if warned:
             trajectory.info["limits_passed"] = [dict(w, reason=limit_message(w["name"], self.limits,
                                                                              self._when(w["t"] / tau)))
                                                 for w in warned]
+        if self.t_eval is not None:  # the rows asked for: the samples, events, start, and the end once
+            shown = (kept & (START | SAMPLE | EVENT)) != 0
+            last = kept.size - 1
+            if not shown[last]:
+                earlier = np.nonzero(shown)[0]
+                if earlier.size and columns["t"][earlier[-1]] == columns["t"][last]:
+                    rows[earlier[-1]] += "+end"  # the run ended on a requested time or an event
+                else:
+                    shown[last] = True
+            trajectory.columns, trajectory.rows = _rows(columns, rows, shown)
         return trajectory
 
     def _when(self, t_tau: float) -> str:
@@ -399,6 +442,11 @@ class _Run:
             if word in message:
                 message = message.split(word)[0] + self._when(t_last)
         return "failed", message, ""
+
+
+def _rows(columns: dict, rows: np.ndarray, mask: np.ndarray) -> tuple[dict, np.ndarray]:
+    """The columns and row labels of the rows in ``mask``."""
+    return {name: column[mask] for name, column in columns.items()}, rows[mask]
 
 
 def _names(events: np.ndarray, names: tuple) -> np.ndarray:

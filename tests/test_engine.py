@@ -549,6 +549,24 @@ def test_terminal_event_ends_the_samples():
     assert run.kind[-1] == EVENT | END
 
 
+def test_steps_and_samples_together_are_both_runs_in_one():
+    """Steps and requested times in one run: its step rows are the every-step run's, its samples the sampled
+    run's, bit for bit (output does not change the steps), and the rows stay in time order."""
+    t_eval = np.linspace(0.0, 9.0, 10)
+    options = {"args": LEVELS_NEVER, "rtol": 1e-10, "atol": 1e-10, "events": oscillator_events}
+    stepped = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], **options)
+    sampled = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], t_eval=t_eval, **options)
+    both = integrate(oscillator, oscillator_jac, (0.0, TEN_PI), [1.0, 0.0], t_eval=t_eval, steps=True, **options)
+    assert np.all(np.diff(both.t) >= 0)
+    for one, flag in ((stepped, STEP), (sampled, SAMPLE)):
+        mine, theirs = (both.kind & flag) != 0, (one.kind & flag) != 0
+        np.testing.assert_array_equal(both.t[mine], one.t[theirs])
+        np.testing.assert_array_equal(both.y[:, mine], one.y[:, theirs])
+    np.testing.assert_array_equal(both.t_events[0], stepped.t_events[0])
+    assert both.kind[0] == START | SAMPLE and (both.kind[-1] & END) != 0
+    assert (both.nfev, both.steps) == (stepped.nfev, stepped.steps)
+
+
 @pytest.mark.parametrize("every_step", [True, False])
 @pytest.mark.parametrize("chunk_steps", [1, 7, 100])
 def test_chunks_change_nothing(every_step, chunk_steps):

@@ -374,6 +374,20 @@ def test_inputs_are_checked(call, words):
     assert words in str(info.value)
 
 
+@pytest.mark.parametrize("equations", ["full", "reduced"])
+def test_a_start_past_the_reynolds_limit_is_refused_unless_it_only_warns(equations):
+    """Spinning the outer cylinder at 2000 rad/s at t = 0 puts the relative flow far past the limit: the run
+    would only go on outside the model's validity, so the start is refused as the gap floor's is; with
+    on_invalid = 'warn' it runs and records the passage."""
+    apparatus = SCENE.apparatus
+    spinning = Initial(0.5, 0.5, omega_b=2000.0)
+    with pytest.raises(ValueError, match=r"give a gap Reynolds number Re\* = [0-9.]+ at t = 0, above "
+                                         r"run.max_gap_reynolds"):
+        simulate(apparatus, spinning, 0.01, equations=equations)
+    warned = simulate(apparatus, spinning, 0.01, equations=equations, limits=Limits(on_invalid="warn"))
+    assert warned.status == "completed"
+
+
 def test_output_interval_rows_are_evenly_spaced_and_on_the_solution():
     """Figure 2 every 0.5 tau: rows exactly at k dt (0 to 20), each within the run's tolerance of the
     reference (rtol 1e-12) at the same times (measured 0.22 tolerance units at rtol 1e-8)."""
@@ -398,6 +412,22 @@ def test_output_interval_rows_are_at_the_requested_times(name, rtol, dt):
     traj = CATALOGUE[name].run("radau", rtol, output_interval=dt)
     keep = np.array(["sample" in row for row in traj.rows])
     np.testing.assert_array_equal(traj.t[keep], dt * np.arange(keep.sum()))
+
+
+@pytest.mark.parametrize("dt", [0.5, 1.0])
+def test_the_regime_and_the_inertia_report_are_judged_on_every_step(dt):
+    """The default scene rocks with a period of about 0.46 s: rows every 0.5 s or 1 s alias the rocking, and
+    its fastest swing falls between them. The regime and the inertia diagnostics are those of the
+    every-step run all the same, number for number."""
+    problem = CATALOGUE["default scene"]
+    limits = Limits(on_invalid="warn")  # the release's first swing passes the Reynolds guard
+    every_step = simulate(problem.system, problem.initial, 10.0, limits=limits)
+    sampled = simulate(problem.system, problem.initial, 10.0, limits=limits, output_interval=dt)
+    assert every_step.regime == "rocking"
+    assert (sampled.regime, sampled.evidence) == (every_step.regime, every_step.evidence)
+    assert sampled.info["inertia"] == every_step.info["inertia"]
+    events = {row for row in sampled.rows if row.startswith("event:")}
+    assert events == {"event:reynolds"} and set(sampled.rows) - events == {"start+sample", "sample", "sample+end"}
 
 
 def test_phi_is_continuous_between_samples_far_apart():

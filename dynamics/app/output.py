@@ -9,7 +9,6 @@ import numpy as np
 
 from dynamics.app.figures import trajectory_figure
 from dynamics.app.folder import OutputFolder
-from dynamics.app.regime import classify
 from dynamics.simulation import Trajectory
 from lubrication.files import save_figure, write_json, write_text
 
@@ -18,16 +17,17 @@ __all__ = ["CSV_COLUMNS", "MAX_ROWS", "summary", "thinning", "trajectory_csv", "
 CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "phi", "omega_a", "omega_b")
 
 
-#: Largest number of rows trajectory.csv holds; a longer run is thinned to every k-th integrator step
-#: (event rows and the last row always kept), and summary.json says so. Rows at a requested
-#: output interval are never thinned.
+#: Largest number of rows trajectory.csv holds by default (the scene's ``run.max_rows``); a longer
+#: every-step output is thinned to every k-th integrator step (event rows and the last row always
+#: kept), and summary.json says so. Rows at a requested output interval are never thinned: the scene
+#: refuses an interval that would give more.
 MAX_ROWS = 200_000
 
 
 def thinning(trajectory: Trajectory, max_rows: int = MAX_ROWS) -> np.ndarray:
     """Indices of the rows to write: all of them, or every k-th step plus every event row and the last."""
     n = trajectory.t.size
-    if n <= max_rows or np.any([row.startswith("sample") for row in trajectory.rows[:2]]):
+    if n <= max_rows or not np.any(trajectory.rows == "step"):
         return np.arange(n)
     every = int(np.ceil(n / max_rows))
     marked = np.array(["event" in row or "end" in row or "start" in row for row in trajectory.rows])
@@ -56,7 +56,6 @@ def summary(trajectory: Trajectory, **extra) -> dict:
     """The run in numbers: model, forces, t_end, mean_speed, regime, wall time, steps, status."""
     c = trajectory.columns
     t_end = float(c["t"][-1])
-    regime, evidence = classify(trajectory)
     out = {
         "model": trajectory.equations,
         "forces": trajectory.forces,
@@ -67,8 +66,8 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "stop_event": trajectory.event,
         "t_end": t_end,
         "mean_speed": float(c["x_b"][-1] / t_end) if t_end > 0 else 0.0,
-        "regime": regime,
-        "regime_evidence": evidence,
+        "regime": trajectory.regime,
+        "regime_evidence": trajectory.evidence,
         "final": {name: float(c[name][-1]) for name in ("kappa", "one_minus_kappa", "phi", "omega_a",
                                                          "omega_b", "x_b")},
         "events": trajectory.events,

@@ -381,7 +381,7 @@ class _Run:
 
 
 def run_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, initial, t_end: float, *,
-                     limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None,
+                     limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
                      frame_terms: str = "paper") -> dict:
     """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
@@ -401,7 +401,7 @@ def run_full_contact(apparatus, force_model: ForceModel, contact: ContactParams,
         start = run.free(y0)
     tau = apparatus.tau
     fields = run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
-                        run.columns, t_end, phi0=initial.phi, method=method, rtol=rtol, t_eval=t_eval,
+                        run.columns, t_end, phi0=initial.phi, method=method, rtol=rtol, t_eval=t_eval, steps=steps,
                         max_steps=max_steps, max_switches=max_switches, progress=progress)
     fields["t"] = fields["t"] / tau
     fields["switches"] = tuple(sw._replace(t=sw.t / tau) for sw in fields["switches"])

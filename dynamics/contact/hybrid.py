@@ -87,7 +87,7 @@ class Phase:
 
 
 def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, method: str, rtol: float,
-               t_eval=None, max_steps: int, max_switches: int = MAX_SWITCHES, progress=None) -> dict:
+               t_eval=None, steps=None, max_steps: int, max_switches: int = MAX_SWITCHES, progress=None) -> dict:
     """Integrate a hybrid system phase by phase from t = 0 to ``t_end``.
 
     Parameters
@@ -110,6 +110,8 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
     t_eval : array_like, optional
         Output times; by default every step. Event rows (switches, the stop) are
         output either way.
+    steps : bool, optional
+        Output every step as well as ``t_eval`` (as :func:`dynamics.integrate.integrate`).
 
     Returns
     -------
@@ -132,7 +134,7 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
             phase_eval = phase_eval[phase_eval <= t_end - t0]
         run = integrate(phase.fun, phase.jac, (0.0, t_end - t0), phase.y0, args=phase.args, method=method,
                         rtol=rtol, atol=phase.atol, events=phase.events, terminal=phase.terminal,
-                        direction=phase.direction, t_eval=phase_eval,
+                        direction=phase.direction, t_eval=phase_eval, steps=steps,
                         max_steps=max(max_steps - totals["steps"], 1),
                         progress=None if progress is None else (lambda t, t0=t0: progress(t0 + t)))
         for key in totals:

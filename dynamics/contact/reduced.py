@@ -448,7 +448,7 @@ class _Run:
 
 def run_contact(params: ReducedParams, contact: ContactParams, t_end: float, kappa0: float, phi0: float,
                 omega_a0: float = 0.0, omega_b0: float = 0.0, x_b0: float = 0.0, *, limits: Limits = Limits(),
-                method: str = "radau", rtol: float = 1e-8, t_eval=None, max_steps: int = 2_000_000,
+                method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None, max_steps: int = 2_000_000,
                 max_switches: int = MAX_SWITCHES, progress=None) -> dict:
     """The reduced model with rough contact from t = 0 to ``t_end`` (units of tau); the fields of
     :func:`dynamics.contact.hybrid.run_phases` with columns kappa, 1 - kappa, phi, Omega_a,
@@ -466,7 +466,7 @@ def run_contact(params: ReducedParams, contact: ContactParams, t_end: float, kap
     else:
         start = run.free(initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0))
     return run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
-                      run.columns, t_end, phi0=phi0, method=method, rtol=rtol, t_eval=t_eval, max_steps=max_steps,
-                      max_switches=max_switches, progress=progress)
+                      run.columns, t_end, phi0=phi0, method=method, rtol=rtol, t_eval=t_eval, steps=steps,
+                      max_steps=max_steps, max_switches=max_switches, progress=progress)
 
 

@@ -565,7 +565,8 @@ class _Run:
 def run_rough_contact(params: ReducedParams, rough: RoughContact, t_end: float, kappa0: float, phi0: float,
                       omega_a0: float = 0.0, omega_b0: float = 0.0, x_b0: float = 0.0, *,
                       limits: Limits = _LIMITS, method: str = "radau", rtol: float = 1e-8, t_eval=None,
-                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None) -> dict:
+                      steps=None, max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES,
+                      progress=None) -> dict:
     """The reduced model with contact on rough surfaces from t = 0 to ``t_end`` (units of tau).
 
     Parameters
@@ -582,7 +583,7 @@ def run_rough_contact(params: ReducedParams, rough: RoughContact, t_end: float, 
         (C_e > 0), the run starts in contact as on touching.
     phi0, omega_a0, omega_b0, x_b0 : float
         Initial angle from the upward vertical (rad), rates (1/tau), position (b).
-    limits, method, rtol, t_eval, max_steps, max_switches, progress
+    limits, method, rtol, t_eval, steps, max_steps, max_switches, progress
         As for :func:`dynamics.contact.reduced.run_contact` (only ``limits.max_turns``
         applies: the gap floor lies beyond the asperities, and without an
         apparatus there is no Reynolds number).
@@ -614,8 +615,8 @@ def run_rough_contact(params: ReducedParams, rough: RoughContact, t_end: float, 
         start = run.free(np.concatenate((initial_state(kappa0, phi0, omega_a0, omega_b0, x_b0), (0.0, 0.0))),
                          on_constraint=on_constraint)
     return run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
-                      run.columns, t_end, phi0=phi0, method=method, rtol=rtol, t_eval=t_eval, max_steps=max_steps,
-                      max_switches=max_switches, progress=progress)
+                      run.columns, t_end, phi0=phi0, method=method, rtol=rtol, t_eval=t_eval, steps=steps,
+                      max_steps=max_steps, max_switches=max_switches, progress=progress)
 
 
 # -- mean rolling against the roughness amplitude, and the uniform speed (6.1) ----------

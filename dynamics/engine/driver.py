@@ -17,10 +17,12 @@ again in every process: a compiled function handed on as a value is a pointer to
 a Python object, which numba does not write to its disk cache.
 
 Output rows. Each row is (t, y, kind, event); ``kind`` is a sum of flags: START
-(the initial state), STEP (an accepted step, when every step is output), SAMPLE
-(a requested time, from the dense output), EVENT (``event`` is its index; -1 on
-other rows) and END (where the run stopped). Rows come in time order; at a common
-time a sample precedes an event, and an event precedes the step it falls in. The
+(the initial state, when every step is output or t0 is a requested time), STEP
+(an accepted step, when every step is output), SAMPLE (a requested time, from the
+dense output), EVENT (``event`` is its index; -1 on other rows) and END (where the
+run stopped). Steps and requested times may be output together. Rows come in time
+order; at a common time a sample precedes an event, and both precede the step
+they fall in. The
 end flag is set on the last row when the run reached ``t_end`` or a terminal event
 there; a run that fails (or reaches ``max_steps``) gets an extra END row at its
 last accepted point, so in every-step output that state appears twice.
@@ -181,8 +183,7 @@ def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratc
         copy_into(s.g, g_new)
         for r in range(found):
             t_event, i = roots[r], which[r]
-            if not every_step:
-                rows = _emit_samples(s, rows, t_event, y)
+            rows = _emit_samples(s, rows, t_event, y)
             if t_event == t_new:
                 copy_into(y_event, s.y)
             else:
@@ -195,10 +196,9 @@ def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratc
                 s.scalars[T] = t_event  # the run ends at the event, with the state there
                 copy_into(s.y, y_event)
                 return rows
+    rows = _emit_samples(s, rows, t_new, y)
     if every_step:
         rows = _push(rows, t_new, s.y, STEP, NO_EVENT)
-    else:
-        rows = _emit_samples(s, rows, t_new, y)
     if t_new >= s.scalars[T_END]:
         s.counters[STATUS] = REACHED_END
     return rows
@@ -231,9 +231,9 @@ def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step
     max_steps : int
         The run stops (MAX_STEPS_REACHED) after this many accepted steps.
     t_eval : ndarray, shape (k,)
-        Increasing output times in [t0, t_end], used when ``every_step`` is False.
+        Increasing output times in [t0, t_end] (empty for none).
     every_step : bool
-        Output every accepted step (True) or the times ``t_eval`` (False).
+        Output every accepted step too (the times ``t_eval`` are output either way).
     terminal : ndarray of int, shape (m,)
         0: event i is recorded and the run goes on; k > 0: its k-th occurrence
         ends the run. Its length is the number of events m that ``events`` returns.
@@ -306,12 +306,12 @@ def advance(fun, jac, events, args, s, chunk_steps):
         counters[STATUS] = RUNNING
     if not counters[STARTED]:
         counters[STARTED] = 1
-        if counters[EVERY_STEP]:
-            rows = _push(rows, s.scalars[T], s.y, START, NO_EVENT)
-        else:
-            while counters[T_EVAL_POS] < s.t_eval.shape[0] and s.t_eval[counters[T_EVAL_POS]] <= s.scalars[T]:
-                rows = _push(rows, s.scalars[T], s.y, START | SAMPLE, NO_EVENT)
-                counters[T_EVAL_POS] += 1
+        kind = START if counters[EVERY_STEP] else np.int64(0)
+        if counters[T_EVAL_POS] < s.t_eval.shape[0] and s.t_eval[counters[T_EVAL_POS]] <= s.scalars[T]:
+            kind |= START | SAMPLE
+            counters[T_EVAL_POS] += 1
+        if kind != 0:
+            rows = _push(rows, s.scalars[T], s.y, kind, NO_EVENT)
     w = new_work(n)
     roots = np.empty(m)
     which = np.empty(m, dtype=np.int64)

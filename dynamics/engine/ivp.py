@@ -121,7 +121,7 @@ def _int_per_event(value, m: int, name: str) -> np.ndarray:
     return as_int.copy()
 
 
-def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, t_eval=None,
+def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, t_eval=None, steps=None,
                  terminal=0, direction=0, first_step=None, max_step=np.inf, max_steps=1_000_000):
     """Check and normalise the inputs of a run; returns the keyword arguments of ``driver.init``.
 
@@ -165,7 +165,7 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-
     if int(max_steps) != max_steps or max_steps < 1:
         msg = f"max_steps must be an integer >= 1, got {max_steps}"
         raise ValueError(msg)
-    every_step = t_eval is None
+    every_step = t_eval is None if steps is None else bool(steps)
     t_eval = np.zeros(0) if t_eval is None else np.array(t_eval, dtype=float)
     if t_eval.ndim != 1 or not np.all(np.isfinite(t_eval)) or np.any(np.diff(t_eval) <= 0):
         msg = "t_eval must be a 1-D array of finite, strictly increasing times"
@@ -230,7 +230,7 @@ class Interrupts:
 
 
 def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=None, terminal=0,
-              direction=0, t_eval=None, first_step=None, max_step=np.inf, max_steps=1_000_000,
+              direction=0, t_eval=None, steps=None, first_step=None, max_step=np.inf, max_steps=1_000_000,
               chunk_steps=10_000, progress=None) -> Result:
     """Integrate y' = fun(t, y, args) over ``t_span`` with the compiled Radau IIA engine.
 
@@ -255,8 +255,10 @@ def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=N
         Per event: the occurrence that ends the run (0: never; True: the first),
         and the sign of crossings that count (+1, -1, 0 for both), as in scipy.
     t_eval : array_like, optional
-        Increasing output times in [t0, t_end] from the dense output; by default
-        every accepted step is output.
+        Increasing output times in [t0, t_end] from the dense output.
+    steps : bool, optional
+        Output every accepted step too; by default only when ``t_eval`` is not
+        given. Rows carry their kind (``driver.STEP``, ``SAMPLE``, ...).
     first_step, max_step : float, optional
         Initial step (chosen automatically by default) and largest step.
     max_steps : int
@@ -279,7 +281,7 @@ def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=N
         msg = f"chunk_steps must be an integer >= 1, got {chunk_steps}"
         raise ValueError(msg)
     inputs = check_inputs(fun, jac, events, t_span, y0, args=args, rtol=rtol, atol=atol, t_eval=t_eval,
-                          terminal=terminal, direction=direction, first_step=first_step,
+                          steps=steps, terminal=terminal, direction=direction, first_step=first_step,
                           max_step=max_step, max_steps=max_steps)
     engine = engine_for(args)
     fun, jac, events = first_class(fun, jac, events, args)
