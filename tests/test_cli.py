@@ -160,3 +160,18 @@ def test_version(capsys):
     with pytest.raises(SystemExit) as info:
         main(["--version"])
     assert info.value.code == 0 and version("snail-cylinder") in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("command", ["validate", "corrections"])
+@pytest.mark.parametrize(("where", "words"), [
+    ("", "must be a path"),
+    ("/proc/snail-report", "cannot write outputs to /proc/snail-report"),
+    ("file/inside", "is a file, not a folder"),
+])
+def test_report_folders_that_cannot_be_written_are_bad_input(tmp_path, capsys, command, where, words):
+    """Refused before any check runs: exit 2, the path and the reason, nothing written."""
+    (tmp_path / "file").write_text("not a folder")
+    target = where if where.startswith("/") or not where else str(tmp_path / where)
+    code, _, err = run(capsys, command, "--quick", "-o", target)
+    assert code == 2 and words in err and "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]

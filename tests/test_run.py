@@ -89,6 +89,34 @@ def test_a_run_stopped_by_its_validity_limit_exits_1_and_keeps_its_data(tmp_path
     assert len(rows) - 1 >= summary["steps"] and rows[-1].endswith(",event:reynolds+end")
 
 
+def test_a_long_every_step_output_is_thinned_with_its_events_kept(tmp_path, capsys):
+    """run.max_rows bounds trajectory.csv: 20 s of the default scene (about 1,900 steps) written as every
+    k-th step, with the start, every event row and the end kept, and summary.json saying so."""
+    out = tmp_path / "run"
+    code = main(["run", "-o", str(out), "--t-end", "20 s", "--set", "run.max_rows=100",
+                 "--set", "run.on_invalid='warn'", "--no-plot", "--json"])
+    summary = json.loads(capsys.readouterr().out)
+    assert code == 0
+    lines = (out / "trajectory.csv").read_text().splitlines()[1:]
+    labels = [line.rsplit(",", 1)[1] for line in lines]
+    thinned = summary["rows_thinned"]
+    assert thinned["steps"] > 10 * 100 and thinned["written"] == len(lines)
+    every = -(-thinned["steps"] // 100)  # ceil: every k-th step fits the bound
+    assert len([label for label in labels if label == "step"]) <= 100
+    assert labels[0] == "start" and labels[-1].endswith("end")
+    assert sum(label.startswith("event:") for label in labels) == len(summary["events"]) >= 1
+    times = np.array([float(line.split(",", 1)[0]) for line in lines])
+    assert np.all(np.diff(times) >= 0.0) and f"every {every}-th step" in thinned["reason"]
+
+
+def test_an_output_interval_beyond_the_row_bound_is_refused_before_the_run(tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["run", "-o", str(out), "--t-end", "10 s", "--output-interval", "1 ms", "--set", "run.max_rows=5000"])
+    err = capsys.readouterr().err
+    assert code == 2 and "run.output_interval = 0.001 s would write 10001 rows" in err
+    assert "run.max_rows = 5000" in err and not out.exists()
+
+
 @jit
 def _decay(t, y, args):
     """y' = -y."""

@@ -16,8 +16,11 @@ def register(subparsers) -> None:
 
 
 def _run(args) -> int:
+    from dynamics.app.folder import writable_folder
+
     from .suite import run_all
 
+    writable_folder(args.output)  # an unusable path is bad input, found before any check runs
     checks, seconds = run_all(args.output, quick=args.quick)
     failed = [c for c in checks if not c.passed]
     print(f"{len(checks) - len(failed)} of {len(checks)} checks passed in {seconds:.1f} s; "

@@ -336,6 +336,9 @@ def run(outdir, quick: bool = False):
 
 def corrections_command(args) -> int:
     """``snail corrections``: run the study, write CSV, JSON and figure into ``args.output``."""
+    from dynamics.app.folder import writable_folder
+
+    writable_folder(args.output)  # an unusable path is bad input, found before the study runs
     records, _, text = run(args.output, quick=args.quick)
     checks = [c for c in records if isinstance(c, Check)]
     failed = [c for c in checks if not c.passed]

@@ -16,10 +16,11 @@ import fcntl
 import os
 import shutil
 import signal
+import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["FolderError", "OUTPUT_NAMES", "OutputFolder", "held_signals"]
+__all__ = ["FolderError", "OUTPUT_NAMES", "OutputFolder", "held_signals", "writable_folder"]
 
 #: The files a run writes; a folder holding only these (or nothing) may be replaced.
 OUTPUT_NAMES = frozenset({"trajectory.csv", "summary.json", "trajectory.png", "scene.resolved.toml"})
@@ -27,6 +28,44 @@ OUTPUT_NAMES = frozenset({"trajectory.csv", "summary.json", "trajectory.png", "s
 
 class FolderError(ValueError):
     """An output folder that cannot be used: a bad path, no permission, or another run owns it."""
+
+
+def _absolute(path: str | os.PathLike) -> Path:
+    text = os.fspath(path)
+    if not text.strip():
+        msg = "the output folder must be a path, got an empty string"
+        raise FolderError(msg)
+    return Path(text).absolute()
+
+
+def _not_through_a_file(path: Path) -> None:
+    for parent in reversed(path.parents):
+        if parent.exists() and not parent.is_dir():
+            msg = f"cannot write outputs to {path}: {parent} is a file, not a folder"
+            raise FolderError(msg)
+    if path.exists() and not path.is_dir():
+        msg = f"cannot write outputs to {path}: it is a file, not a folder"
+        raise FolderError(msg)
+
+
+def writable_folder(path: str | os.PathLike) -> Path:
+    """A folder that outputs are added to (a report, a table), made if missing and checked writable.
+
+    Raises
+    ------
+    FolderError
+        For an empty path, a path through or onto a file, or a place that cannot be written.
+    """
+    folder = _absolute(path)
+    _not_through_a_file(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        msg = f"cannot write outputs to {folder}: {err.strerror or err}"
+        raise FolderError(msg) from err
+    return folder
 
 
 @contextmanager
@@ -64,11 +103,7 @@ class OutputFolder:
     """
 
     def __init__(self, path: str | os.PathLike):
-        text = os.fspath(path)
-        if not text.strip():
-            msg = "the output folder must be a path, got an empty string"
-            raise FolderError(msg)
-        self.path = Path(text).absolute()
+        self.path = _absolute(path)
         self.staging = self.path.parent / f".{self.path.name}.staging-{os.getpid()}"
         self._lock_fd: int | None = None
         self._committed = False
@@ -115,13 +150,7 @@ class OutputFolder:
         return self.path
 
     def _check_target(self) -> None:
-        for parent in reversed(self.path.parents):
-            if parent.exists() and not parent.is_dir():
-                msg = f"cannot write outputs to {self.path}: {parent} is a file, not a folder"
-                raise FolderError(msg)
-        if self.path.exists() and not self.path.is_dir():
-            msg = f"cannot write outputs to {self.path}: it is a file, not a folder"
-            raise FolderError(msg)
+        _not_through_a_file(self.path)
         if self.path.is_dir():
             others = sorted(p.name for p in self.path.iterdir() if p.name not in OUTPUT_NAMES)
             if others:

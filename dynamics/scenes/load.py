@@ -371,7 +371,14 @@ def _run(raw: Mapping[str, Any], apparatus: Apparatus | None) -> Run:
         msg = (f"run.output_interval must be in (0, run.t_end] = (0, {values['t_end']:g}] {unit}, "
                f"got {values['output_interval']:g} {unit}")
         raise SceneError(msg)
-    return Run(**values)
+    run = Run(**values)
+    if run.output_interval is not None and run.t_end / run.output_interval + 1 > run.max_rows:
+        unit = "tau" if apparatus is None else "s"
+        msg = (f"run.output_interval = {run.output_interval:g} {unit} would write {run.t_end / run.output_interval + 1:.6g} "
+               f"rows over run.t_end = {run.t_end:g} {unit}, more than run.max_rows = {run.max_rows}: "
+               f"lengthen the interval or raise run.max_rows")
+        raise SceneError(msg)
+    return run
 
 
 def _build(raw: dict[str, Any], source: str) -> Scene:
@@ -524,7 +531,8 @@ def resolved_toml(scene: Scene) -> str:
     sections["run"] = {f"t_end{suffix}": run.t_end, "rtol": run.rtol}
     if run.output_interval is not None:
         sections["run"][f"output_interval{suffix}"] = run.output_interval
-    sections["run"].update(gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds, on_invalid=run.on_invalid)
+    sections["run"].update(max_rows=run.max_rows, gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds,
+                           on_invalid=run.on_invalid)
     units = ("dimensionless: times in tau, rates in 1/tau, lengths in b" if scene.dimensionless
              else "SI units, angles in rad")
     lines = [f"# Scene {json.dumps(scene.source)}, fully resolved ({units})."]

@@ -163,6 +163,9 @@ class Run:
     output_interval: float | None = key(None, help="rows of trajectory.csv at this interval (and at every event); "
                                         "'none': one row per integrator step", dimension="[time]", unit="s",
                                         low=0.0, bounds="()", example="0.1 s", reduced_unit="tau", none="none")
+    max_rows: int = key(200_000, help="most rows trajectory.csv may hold: a longer every-step output is thinned "
+                                      "to every k-th step (event rows kept); an output_interval giving more rows "
+                                      "is refused before the run", low=1, integer=True)
     gap_floor: float = _limit("gap_floor")
     max_gap_reynolds: float | None = _limit("max_gap_reynolds")
     on_invalid: str = _limit("on_invalid")
