@@ -23,13 +23,70 @@ from . import _kernels
 from .geometry import Annulus, Fluid, FluidForces, Motion
 
 __all__ = ["GRIDS", "PROFILES", "GapProfile", "ReynoldsPressure", "reynolds_forces",
-           "reynolds_pressure", "MIN_CELLS", "MAX_POINTS_PER_CELL"]
+           "reynolds_pressure", "MIN_CELLS", "MAX_POINTS_PER_CELL", "uniform_grid_cells", "uniform_grid_error",
+           "uniform_grid_reach"]
 
 GRIDS = ("sommerfeld", "uniform")
 PROFILES = ("thin", "eccentric")
 MIN_CELLS = 8
 MAX_CELLS = 1 << 20
 MAX_POINTS_PER_CELL = 8
+
+
+def uniform_grid_error(n: int, kappa: float) -> float:
+    """Estimated relative error of the forces on the grid uniform in theta with ``n`` cells.
+
+    The film's integrands are analytic in theta with poles at distance
+    alpha = acosh(1/kappa) from the real axis, so the composite rule's error
+    falls as exp(-n alpha); measured, the largest error of the five coefficients
+    (T_a per W_b against its row) is 0.4-1.3 (n alpha)^2 exp(-n alpha) for
+    kappa in [0.3, 0.9999] and n in [8, 1024] with n alpha > 2. The estimate
+    takes the prefactor 1.5, an upper bound, and 1 (nothing resolved) for
+    n alpha <= 2, fewer cells than the pressure peak is wide. On the Sommerfeld
+    grid the thin-gap forces are exact to rounding from 8 cells.
+    """
+    if kappa <= 0.0:
+        return 0.0
+    x = n * math.acosh(1.0 / kappa)
+    if x <= 2.0:  # fewer cells than the peak's width: unresolved
+        return 1.0
+    return min(1.0, 1.5 * x * x * math.exp(-x))
+
+
+def uniform_grid_cells(kappa: float, tolerance: float) -> int:
+    """The fewest cells of the uniform-theta grid whose :func:`uniform_grid_error` at ``kappa`` meets ``tolerance``
+    (MAX_CELLS if none does). The estimate falls with n beyond its peak at n = 2/acosh(1/kappa): a bisection there."""
+    if kappa <= 0.0:
+        return MIN_CELLS
+    low = max(MIN_CELLS, math.ceil(2.0 / math.acosh(1.0 / kappa)))
+    if uniform_grid_error(low, kappa) <= tolerance:
+        return low
+    high = MAX_CELLS
+    if uniform_grid_error(high, kappa) > tolerance:
+        return MAX_CELLS
+    while high - low > 1:  # error(low) > tolerance >= error(high)
+        mid = (low + high) // 2
+        low, high = (low, mid) if uniform_grid_error(mid, kappa) <= tolerance else (mid, high)
+    return high
+
+
+def uniform_grid_reach(n: int, tolerance: float) -> float:
+    """The largest kappa at which ``n`` cells uniform in theta meet ``tolerance`` (:func:`uniform_grid_error`).
+
+    The estimate is 1.5 x^2 exp(-x) in x = n acosh(1/kappa), falling for x > 2;
+    the root x* >= 2 of 1.5 x^2 exp(-x) = tolerance gives kappa = 1/cosh(x*/n).
+    """
+    if not 0.0 < tolerance < 1.0:
+        msg = f"tolerance must be in (0, 1), got {tolerance!r}"
+        raise ValueError(msg)
+    x = 2.0 + 2.0 * math.log(1.0 / tolerance)  # an upper bracket: there 1.5 x^2 e^-x < tolerance
+    low = 2.0
+    for _ in range(200):  # bisection to rounding
+        mid = 0.5 * (low + x)
+        if mid in (low, x):
+            break
+        low, x = (mid, x) if 1.5 * mid * mid * math.exp(-mid) > tolerance else (low, mid)
+    return 1.0 / math.cosh(x / n)
 
 
 @dataclass(frozen=True)

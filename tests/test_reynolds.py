@@ -273,3 +273,29 @@ def test_pressure_has_zero_mean_and_the_right_nodes():
     sol = reynolds_pressure(annulus, Motion(omega_a=1.0), FLUID, n=64, grid="uniform")
     np.testing.assert_allclose(sol.theta, -np.pi + 2 * np.pi * np.arange(64) / 64, atol=1e-15)
     assert abs(np.mean(sol.p)) < 1e-12 * np.abs(sol.p).max()
+
+
+@pytest.mark.parametrize("kappa", [0.5, 0.9, 0.99, 0.999])
+def test_uniform_grid_error_estimate_bounds_the_measured_error(kappa):
+    """The estimate 1.5 (n alpha)^2 exp(-n alpha), alpha = acosh(1/kappa), lies above the largest measured
+    error of the five coefficients against (2.5)-(2.7) (T_a per W_b against its row) wherever that error is
+    above rounding, within a factor 10 of it once n alpha >= 4; and the cells it asks for meet the tolerance."""
+    from lubrication import resistance
+    from lubrication.reynolds import uniform_grid_cells, uniform_grid_error
+
+    def measured(n):
+        annulus = Annulus.from_kappa(a=0.008, b=0.01125, kappa=kappa, length=0.1)
+        fluid = Fluid(nu=2e-4, rho=960.0)
+        got = resistance(annulus, fluid, "reynolds", n=n, grid="uniform").as_tuple()
+        want = resistance(annulus, fluid, "closed-form").as_tuple()
+        row = max(abs(want[2]), abs(want[4]))
+        return max(*(abs(got[i] / want[i] - 1.0) for i in range(4)), abs(got[4] - want[4]) / row)
+
+    for n in (8, 16, 32, 64, 128, 256, 512):
+        err, estimate = measured(n), uniform_grid_error(n, kappa)
+        if err > 1e-12:
+            assert err <= estimate, (n, err, estimate)
+            if n * math.acosh(1.0 / kappa) >= 4.0:  # the asymptotic regime: a sharp estimate
+                assert estimate <= 10.0 * err, (n, err, estimate)
+    for tolerance in (1e-2, 1e-6):
+        assert measured(uniform_grid_cells(kappa, tolerance)) <= tolerance

@@ -117,6 +117,36 @@ def test_an_output_interval_beyond_the_row_bound_is_refused_before_the_run(tmp_p
     assert "run.max_rows = 5000" in err and not out.exists()
 
 
+@pytest.mark.parametrize(("grid", "n", "stopped"), [("uniform", 8, True), ("uniform", 2048, False),
+                                                     ("sommerfeld", 8, False)])
+def test_a_reynolds_grid_stops_where_it_no_longer_resolves_the_film(grid, n, stopped):
+    """The default scene over 2 s reaches 1 - kappa = 2e-4 (kappa = 0.9998). 8 cells uniform in theta
+    resolve the film (forces within model.tolerance = 1e-2) only to kappa = 0.557; closer their forces
+    err by orders of magnitude and the inner cylinder crashes into the wall. The run stops where the grid
+    stops resolving, and says why and what would do; 2048 cells reach 1 - kappa = 1e-6 and the Sommerfeld
+    grid is exact from 8, so those run on."""
+    from dynamics.app.run import run_scene
+    from dynamics.scenes import load_scene
+
+    scene = load_scene(None, ["run.t_end='2 s'", "model.forces='reynolds'", f"model.grid='{grid}'", f"model.n={n}",
+                              "run.on_invalid='warn'"])
+    trajectory = run_scene(scene)
+    assert ("resolution" in trajectory.info) == stopped
+    if stopped:
+        reach = trajectory.info["resolution"]["kappa_reach"]
+        assert reach == pytest.approx(0.557, abs=1e-3)
+        passed = [p for p in trajectory.info["limits_passed"] if p["name"] == "gap_floor"]
+        assert len(passed) == 1 and "only to kappa = 0.557" in passed[0]["reason"]
+        assert "model.grid = 'sommerfeld' is exact from 8 cells" in trajectory.info["resolution"]["reason"]
+        stop = load_scene(None, ["run.t_end='2 s'", "model.forces='reynolds'", "model.grid='uniform'",
+                                 "model.n=8", "run.max_gap_reynolds='none'"])
+        halted = run_scene(stop)
+        assert halted.status == "stopped" and halted.event == "gap_floor"
+        assert halted.columns["kappa"][-1] == pytest.approx(reach, rel=1e-9) and "only to kappa" in halted.message
+    else:
+        assert trajectory.status == "completed"
+
+
 @jit
 def _decay(t, y, args):
     """y' = -y."""

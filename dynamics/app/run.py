@@ -10,6 +10,7 @@ from dynamics.contact.roughness import RoughContact
 from dynamics.equations.forces import force_model
 from dynamics.scenes import Scene, SceneError
 from dynamics.simulation import Trajectory, simulate
+from lubrication.reynolds import uniform_grid_cells, uniform_grid_reach
 
 __all__ = ["run_scene"]
 
@@ -72,9 +73,46 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
         raise _refuse(key, "the reduced equations (2.11) are per unit length of an infinitely long annulus and "
                            "drop the O(delta/a) frame terms; this needs model.equations = 'full'")
     run = scene.run
+    limits, reach = run.limits, None
+    if model.equations == "full" and model.forces == "reynolds" and model.grid == "uniform":
+        # the grid resolves the film only so near contact: closer, its forces err beyond model.tolerance
+        reach = uniform_grid_reach(model.n, model.tolerance)
+        if 1.0 - reach > limits.gap_floor:
+            limits = replace(limits, gap_floor=1.0 - reach)
+        else:
+            reach = None
     try:
-        return simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
-                        contact=contact, limits=run.limits, method=method, rtol=run.rtol,
-                        output_interval=run.output_interval, progress=progress, frame_terms=model.frame_terms)
+        trajectory = simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
+                              contact=contact, limits=limits, method=method, rtol=run.rtol,
+                              output_interval=run.output_interval, progress=progress,
+                              frame_terms=model.frame_terms)
     except ValueError as err:
-        raise SceneError(str(err)) from err
+        raise SceneError(_resolution_reason(model, reach) if reach is not None and "gap floor" in str(err)
+                         else str(err)) from err
+    if reach is not None:
+        _report_resolution(trajectory, model, reach)
+    return trajectory
+
+
+def _resolution_reason(model, reach: float) -> str:
+    """Why a Reynolds grid uniform in theta bounds the run, and what would not."""
+    needs = ", ".join(f"{uniform_grid_cells(1.0 - gap, model.tolerance)} cells to 1 - kappa = {gap:g}"
+                      for gap in (1e-3, 1e-6))
+    return (f"model.n = {model.n} cells uniform in theta resolve the film (forces within model.tolerance = "
+            f"{model.tolerance:g}) only to kappa = {reach:.6g} (1 - kappa = {1.0 - reach:.3g}); "
+            f"model.grid = 'sommerfeld' is exact from 8 cells, or raise model.n ({needs})")
+
+
+def _report_resolution(trajectory: Trajectory, model, reach: float) -> None:
+    """Where the run met the grid's reach: its stop (or, with on_invalid = 'warn', its passage) says why."""
+    met = trajectory.event == "gap_floor" or any(e["name"] == "gap_floor" for e in trajectory.events)
+    if not met:
+        return
+    reason = _resolution_reason(model, reach)
+    trajectory.info["resolution"] = {"cells": model.n, "grid": "uniform", "tolerance": model.tolerance,
+                                     "kappa_reach": reach, "reason": reason}
+    if trajectory.event == "gap_floor":
+        trajectory.message = f"stopped at t = {trajectory.t[-1]:.6g} s: {reason}"
+    for passed in trajectory.info.get("limits_passed", []):
+        if passed["name"] == "gap_floor":
+            passed["reason"] = f"passed at t = {passed['t']:.6g} s: {reason}"
