@@ -5,8 +5,14 @@ Every case is run for real: the command line through :func:`dynamics.app.cli.mai
 call (the exception and its message). A case passes when the status (or the
 exception type) is the expected one, the message carries the expected words, no
 traceback is printed and, for the command line, nothing is left in the output
-folder. :func:`table` renders the catalogue as the markdown table of the
-documentation; ``tests/test_faults.py`` runs it.
+folder. :func:`table` renders the catalogue as the markdown table stored in
+``docs/faults.md`` (``python -m validation.faults``), with the temporary folders
+written as ``<tmp>``; ``tests/test_faults.py`` runs every case and checks that the
+stored table is the one the cases give now.
+
+Faults that need a second process (two runs into one folder, Ctrl-C, a second
+Ctrl-C, SIGTERM) are exercised by ``tests/test_run_outputs.py`` and listed in
+:data:`PROCESS_FAULTS` with what each gets.
 """
 
 from __future__ import annotations
@@ -18,7 +24,7 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["CASES", "Case", "Outcome", "run_case", "table"]
+__all__ = ["CASES", "PROCESS_FAULTS", "Case", "Outcome", "run_case", "table"]
 
 GEOMETRY = ("--a", "0.008", "--b", "0.01125")
 
@@ -71,6 +77,14 @@ CASES: tuple[Case, ...] = (
          ("run", "--set", "run.on_invalid=ignore")),
     Case("scene: output interval longer than the run", "exit 2", ("run.output_interval",),
          ("run", "--t-end", "1", "--output-interval", "5 s")),
+    Case("scene: output interval giving more rows than run.max_rows", "exit 2", ("would write", "run.max_rows"),
+         ("run", "--t-end", "1000", "--output-interval", "1 ms")),
+    Case("scene: initial spin past the Reynolds limit", "exit 2", ("Re* =", "run.max_gap_reynolds", "'warn'"),
+         ("run", "--set", "initial.omega_b=2000")),
+    Case("scene: Reynolds grid of 8 cells uniform in theta (forces wrong near contact)", "exit 1",
+         ("resolve the film", "only to kappa = 0.557", "'sommerfeld'"),
+         ("run", "--t-end", "2", "--set", "model.forces=reynolds", "--set", "model.grid=uniform", "--set",
+          "model.n=8", "--set", "run.max_gap_reynolds=none")),
     Case("scene: open ends in the reduced equations", "exit 2", ("model.ends", "full"),
          ("run", "--model", "reduced", "--set", "model.ends=open")),
     Case("scene: Reynolds forces in the reduced equations", "exit 2", ("model.forces", "'closed-form' or 'auto'"),
@@ -82,6 +96,10 @@ CASES: tuple[Case, ...] = (
     Case("output folder: in /proc", "exit 2", ("cannot write outputs to /proc/snail",), ("run", "-o", "/proc/snail")),
     Case("output folder: through a file", "exit 2", ("is a file, not a folder",), ("run", "-o", "{file}/out")),
     Case("output folder: holds other files", "exit 2", ("not a run's outputs",), ("run", "-o", "{full}")),
+    Case("report folder of snail validate: in /proc", "exit 2", ("cannot write outputs to /proc/snail",),
+         ("validate", "--quick", "-o", "/proc/snail")),
+    Case("report folder of snail corrections: through a file", "exit 2", ("is a file, not a folder",),
+         ("corrections", "--quick", "-o", "{file}/out")),
     Case("forces: kappa = 1", "exit 2", ("kappa must be in [0, 1)",), ("forces", *GEOMETRY, "--kappa", "1")),
     Case("forces: b < a", "exit 2", ("b must be greater than a",), ("forces", "--a", "0.02", "--b", "0.01",
                                                                   "--kappa", "0.5")),
@@ -101,6 +119,18 @@ CASES: tuple[Case, ...] = (
     Case("API: Limits(gap_floor=2)", "ValueError", ("gap_floor must be in (0, 1)",), call=_api("gap floor 2")),
     Case("API: Limits(on_invalid='ignore')", "ValueError", ("on_invalid must be one of",),
          call=_api("on_invalid ignore")),
+)
+
+
+#: Faults exercised in subprocesses by tests/test_run_outputs.py: (what was tried, what it gets).
+PROCESS_FAULTS = (
+    ("a second snail run into a folder another run is writing", "exit 2 at once: 'another run is writing to "
+     "DIR'; the first run's set is untouched"),
+    ("Ctrl-C during a run", "exit 1; the folder holds the new set, summary.json status 'interrupted' with the time "
+     "reached"),
+    ("Ctrl-C twice", "exit 1 or 130; the folder holds either the previous complete set or the new one, never a "
+     "mixture, and no staging folder is left"),
+    ("SIGTERM during a run", "as Ctrl-C, the reason naming SIGTERM"),
 )
 
 
@@ -144,23 +174,35 @@ def run_case(case: Case) -> Outcome:
                 code = main(argv)
             except SystemExit as exit_:
                 code = exit_.code
-        text = err.getvalue() + out.getvalue()
-        left = code != 0 and (tmp / "out").exists()
+        text = (err.getvalue() + out.getvalue()).replace(str(tmp), "<tmp>")
+        left = code == 2 and (tmp / "out").exists()  # refused input leaves nothing; a stopped run keeps its data
         intact = (tmp / "full" / "notes.txt").read_text() == "keep me"
         return Outcome(case, f"exit {code}", text, "Traceback" not in text and not left and intact)
 
 
 def table(outcomes) -> str:
-    """The markdown table: what was tried, what it got, the message (shortened), pass."""
-    lines = ["| what was tried | expected | got | message | passed |", "|---|---|---|---|---|"]
+    """The markdown page: what was tried, what it got, the message (shortened), pass; then the process faults."""
+    lines = ["# Bad input and faults: what was tried, and what each gets", "",
+             "Generated by `python -m validation.faults` (checked by `tests/test_faults.py`). Every row was run: "
+             "the command line through `snail` (exit status, message on standard error, nothing left in the "
+             "output folder), the Python API through the call (the exception and its message).", "",
+             "| what was tried | expected | got | message | passed |", "|---|---|---|---|---|"]
     for o in outcomes:
         message = " ".join(o.message.split())
-        message = (message[:140] + "...") if len(message) > 140 else message
+        message = (message[:160] + "...") if len(message) > 160 else message
         lines.append(f"| {o.case.what} | {o.case.expected} | {o.got} | {message.replace('|', '/')} | "
                      f"{'yes' if o.passed else '**NO**'} |")
+    lines += ["", "Faults that need a second process, run by `tests/test_run_outputs.py`:", "",
+              "| what was tried | what it gets |", "|---|---|"]
+    lines += [f"| {what} | {gets} |" for what, gets in PROCESS_FAULTS]
     return "\n".join(lines) + "\n"
 
 
+def main() -> None:
+    from lubrication.files import write_text
+
+    write_text(Path(__file__).resolve().parents[1] / "docs" / "faults.md", table([run_case(c) for c in CASES]))
+
+
 if __name__ == "__main__":
-    results = [run_case(c) for c in CASES]
-    print(table(results))
+    main()

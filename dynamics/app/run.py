@@ -112,7 +112,7 @@ def _report_resolution(trajectory: Trajectory, model, reach: float) -> None:
     trajectory.info["resolution"] = {"cells": model.n, "grid": "uniform", "tolerance": model.tolerance,
                                      "kappa_reach": reach, "reason": reason}
     if trajectory.event == "gap_floor":
-        trajectory.message = f"stopped at t = {trajectory.t[-1]:.6g} s: {reason}"
+        trajectory.message = f"the gap closed past the grid's reach at t = {trajectory.t[-1]:.6g} s: {reason}"
     for passed in trajectory.info.get("limits_passed", []):
         if passed["name"] == "gap_floor":
             passed["reason"] = f"passed at t = {passed['t']:.6g} s: {reason}"
