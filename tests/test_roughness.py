@@ -22,12 +22,9 @@ from dynamics.contact.rough import (
     locked_rhs,
     normal_reaction,
     phase_args,
-    rolling_statistics,
     sliding_events,
     sliding_jacobian,
     sliding_rhs,
-    speed_table,
-    speed_table_markdown,
 )
 from dynamics.contact.roughness import (
     CLIP_FLOOR,
@@ -42,6 +39,11 @@ from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import PHASE_CODES, simulate
+from validation.rough_speeds import (
+    rolling_statistics,
+    speed_table,
+    speed_table_markdown,
+)
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8

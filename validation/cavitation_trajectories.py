@@ -71,7 +71,7 @@ from dynamics.simulation import simulate as run_trajectory
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import CAVITATION_MODELS, cavitating_pressure
 
-from .checks import Check, Finding, absolute, at_least, at_most
+from .checks import Finding, absolute, at_least, at_most
 
 __all__ = ["SLOPES_DEG", "PRESSURE_DROPS", "Run", "simulate", "cavitated_fraction", "mean_speed", "run"]
 

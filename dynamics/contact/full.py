@@ -99,7 +99,6 @@ __all__ = [
     "contact_rhs",
     "friction_coefficient",
     "impact",
-    "run_full_contact",
     "slip",
     "steady_full_contact",
 ]

@@ -147,7 +147,6 @@ __all__ = [
     "locked_rhs",
     "on_circle",
     "phase_args",
-    "run_contact",
     "sliding_events",
     "sliding_jacobian",
     "sliding_rhs",

@@ -1,0 +1,122 @@
+"""Rolling on a minimum gap that varies along both surfaces: its mean speed against the roughness amplitude.
+
+The study behind the random-roughness numbers of the documentation: reduced-model
+runs with :class:`dynamics.contact.roughness.RoughContact` over seeds and
+amplitudes, each averaged once it has settled, against the uniform kappa*
+steady rate (5.10)-(5.11) that the speed law (6.1) uses.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numpy as np
+
+from dynamics.contact.reduced import ContactParams
+from dynamics.contact.roughness import RoughContact
+from dynamics.contact.steady import steady_state
+from dynamics.equations.limits import Limits
+from dynamics.equations.reduced import ReducedParams
+from dynamics.initial import Initial
+from dynamics.simulation import simulate
+
+__all__ = ["SpeedRow", "rolling_statistics", "speed_table", "speed_table_markdown"]
+
+
+class SpeedRow(NamedTuple):
+    """Rolling statistics at one amplitude, over seeds (rates in 1/tau: speeds in b/tau)."""
+
+    amplitude: float
+    mean: float  # mean over seeds of each run's mean rolling rate <Omega_b>
+    spread: float  # standard deviation of <Omega_b> over seeds
+    ratio: float  # mean / the uniform kappa* steady Omega_b, (6.1) with exact=True
+    fluctuation: float  # mean over seeds of the time standard deviation of Omega_b
+    switch_rate: float  # mean over seeds of phase switches per tau
+    seeds: int
+
+
+def rolling_statistics(trajectory, t_settle: float) -> tuple[float, float, float]:
+    """Mean rolling rate, time standard deviation of Omega_b and switches per unit time after ``t_settle``.
+
+    Parameters
+    ----------
+    trajectory : dynamics.simulation.Trajectory
+        A dimensionless contact run (``simulate`` with :class:`ReducedParams`),
+        whose X_b is in b: times in tau, rates in 1/tau.
+    t_settle : float
+        Start of the average (tau), before the end of the run.
+
+    Returns
+    -------
+    mean, fluctuation, switch_rate : float
+        (X_b(t_end) - X_b(t_settle)) / (t_end - t_settle) (1/tau); the
+        time-weighted (trapezoidal) standard deviation of Omega_b about it over
+        the rows (1/tau); phase switches per tau.
+    """
+    if not trajectory.dimensionless:
+        msg = ("rolling_statistics needs a dimensionless trajectory (simulate with ReducedParams), where X_b "
+               "is the angle turned")
+        raise ValueError(msg)
+    cols = trajectory.columns
+    t, omega_b, x_b = cols["t"], cols["omega_b"], cols["x_b"]
+    span = t[-1] - t_settle
+    if not span > 0.0:
+        msg = f"t_settle must be before the end of the run, t = {t[-1]:.6g}; got {t_settle!r}"
+        raise ValueError(msg)
+    mean = (x_b[-1] - np.interp(t_settle, t, x_b)) / span
+    late = t >= t_settle
+    variance = np.trapezoid((omega_b[late] - mean) ** 2, t[late]) / span
+    switches = sum(sw["t"] >= t_settle for sw in trajectory.info.get("switches", ()))
+    return float(mean), math.sqrt(max(float(variance), 0.0)), switches / span
+
+
+def speed_table(params: ReducedParams, mean: ContactParams, correlation: float, amplitudes, seeds, *,
+                t_end: float, t_settle: float, kappa0: float = 0.5, phi0: float = 0.3,
+                rtol: float = 1e-8) -> tuple[float, tuple[SpeedRow, ...]]:
+    """Mean rolling rate and its spread over ``seeds`` against the roughness amplitude.
+
+    Every run starts from figure 2's release (``kappa0``, ``phi0``) at rest
+    (:func:`dynamics.simulation.simulate`, the compiled integrator) and is
+    averaged over [t_settle, t_end] (units of tau). The correlation length
+    ``correlation`` is in rad on both surfaces (a = b in the reduced model).
+
+    Returns
+    -------
+    uniform : float
+        The steady Omega_b of the uniform kappa*_mean (5.10)-(5.11). (6.1) is
+        V = V* sin(alpha) Omega_b / (3 s), so ratios of rates are ratios of speeds.
+    rows : tuple of SpeedRow
+
+    Raises
+    ------
+    RuntimeError
+        If a run does not reach ``t_end``.
+    """
+    uniform = steady_state(params.s, mean.kappa_star, mean.psi).omega_b
+    rows = []
+    for amplitude in amplitudes:
+        stats = []
+        for seed in seeds:
+            rough = RoughContact.from_seed(mean, amplitude, correlation, correlation, seed)
+            traj = simulate(params, Initial(kappa0, phi0), t_end, contact=rough, limits=Limits(max_turns=1e6),
+                            rtol=rtol)
+            if traj.status != "completed":
+                msg = f"amplitude {amplitude:g}, seed {seed}: the run stopped early: {traj.message}"
+                raise RuntimeError(msg)
+            stats.append(rolling_statistics(traj, t_settle))
+        rates, fluctuations, switch_rates = np.array(stats).T
+        rows.append(SpeedRow(float(amplitude), float(rates.mean()), float(rates.std(ddof=1)) if rates.size > 1
+                             else 0.0, float(rates.mean()) / uniform, float(fluctuations.mean()),
+                             float(switch_rates.mean()), len(stats)))
+    return uniform, tuple(rows)
+
+
+def speed_table_markdown(uniform: float, rows) -> str:
+    """The table of :func:`speed_table` in markdown."""
+    lines = [f"uniform kappa* steady Omega_b (6.1): {uniform:.5g} / tau", "",
+             "| amplitude | <Omega_b> | spread (seeds) | / uniform | Omega_b fluctuation | switches/tau | seeds |",
+             "|---|---|---|---|---|---|---|"]
+    lines += [f"| {r.amplitude:g} | {r.mean:.5g} | {r.spread:.2g} | {r.ratio:.4f} | {r.fluctuation:.3g} | "
+              f"{r.switch_rate:.3g} | {r.seeds} |" for r in rows]
+    return "\n".join(lines)
