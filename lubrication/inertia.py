@@ -26,17 +26,23 @@ into two parts.
    viscous one by delta/a: the relative force error is
    G(kappa, motion) Re* with the reduced Reynolds number
 
-       Re* = max(|Re_a|, |Re_b|) delta / a,
+       Re* = max(|Re_a|, |Re_b|) delta / a.
 
-   and G <= 0.1 for walls turning in the same sense, W_a W_b >= 0 (largest,
-   0.0995, for W_a = W_b at kappa -> 0, delta/a = 0.01; every table node and
-   direction checked): :func:`inertial_error_estimate` evaluates the
-   first-order error from a table of finite-element solves. Counter-rotation
-   can cancel the Stokes f_chi (R_chi_a W_a + R_chi_b W_b = 0) but not the
-   inertial f_eps, so there the relative error has no bound. The first-order
-   error agrees with full Newton solutions to 1% for Re* <= 1 and to 15% up
-   to Re* = 30 (docs/inertia/inertia.md). The squeeze eps' is not covered:
-   its quasi-steady convective inertia came out negligible, and what remains
+   The error is measured against a scale of the Stokes force that cannot
+   cancel, the sum |R_chi_a W_a| + |R_chi_b W_b| of the magnitudes of its two
+   rotational terms (f_chi = R_chi_a W_a + R_chi_b W_b): for walls turning in
+   the same sense it is |f_chi| itself; for counter-rotating walls f_chi can
+   vanish (R_chi_a W_a = -R_chi_b W_b) while the inertial f_eps does not, and
+   a ratio to |f_chi| would have no bound. Against this scale G <= 0.0995 for
+   every direction of (W_a, W_b), every kappa and delta/a >= 0.01 (largest
+   for W_a a = W_b b at kappa -> 0, delta/a = 0.01; every table node and
+   direction checked), and G -> 1/10 in the thin-gap limit (closed form
+   below): at first order the relative force error is below Re*/10 for every
+   wall motion. :func:`inertial_error_estimate` evaluates it from a table of
+   finite-element solves. The first-order error agrees with full Newton
+   solutions to 1% for Re* <= 1 and to 15% up to Re* = 30
+   (docs/inertia/inertia.md). The squeeze eps' is not covered: its
+   quasi-steady convective inertia came out negligible, and what remains
    is unsteady (the Stokes number h^2 / (nu T)).
 
 Two references independent of the finite elements:
@@ -63,11 +69,25 @@ Two references independent of the finite elements:
 
   U_a = W_a a, U_b = W_b b: inertia adds a force along the line of centres
   (towards the narrow gap) of relative size
-  Re* (U_a^2 + 4 U_a U_b + U_b^2) / (30 (U_a + U_b) V): 1/30 of Re* for
-  the inner or the outer wall alone, 1/10 for both at one speed. This is
-  the regime of the classical small-eccentricity, small-clearance expansion
-  of DiPrima & Stuart (J. Fluid Mech. 54, 393-415, 1972; and J. Lubr.
-  Technol. 94, 266-274, 1972).
+  Re* |U_a^2 + 4 U_a U_b + U_b^2| / (30 (|U_a| + |U_b|) V) against the
+  non-cancelling scale above: 1/30 of Re* for the inner or the outer wall
+  alone or for U_b = -U_a, 1/10 (the largest over all directions) for both
+  at one speed. This is the regime of the classical small-eccentricity,
+  small-clearance expansion of DiPrima & Stuart (J. Lubr. Technol. 94,
+  266-274, 1972; J. Fluid Mech. 54, 393-415, 1972). Their coefficients were
+  not available to this project, so the numbers here are the project's own
+  derivation, checked against the exact small-eccentricity solution above
+  (their difference is O(delta/a), tests/test_navier_stokes.py). What is
+  quoted of that theory agrees in kind: the first inertial correction of a
+  journal bearing changes the radial (direct) stiffness d f_eps / d eps
+  linearly in the Reynolds number and leaves the cross-coupled stiffness and
+  the load magnitude unchanged at that order ("Approximations in
+  hydrodynamic lubrication", J. Tribol. 114, 14-25, 1992, comparing full
+  Navier-Stokes solutions with it). Here, for the journal (U_b = 0), the
+  load at small kappa is f_chi^(0), perpendicular to the correction, so its
+  magnitude changes at O(Re*^2) while the attitude angle turns by
+  Re*/30 rad, and d f_eps / d eps gains (pi/5) rho a U_a^2 / delta per
+  unit length (an outward force growing with eps: a negative stiffness).
 """
 
 from __future__ import annotations
@@ -79,9 +99,9 @@ import numpy as np
 from ._jit import jit
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
 
-__all__ = ["KAPPA_AXIS", "TABLE_COLUMNS", "build_error_table", "frame_forces", "inertial_error_estimate",
-           "inertial_force_correction", "reduced_reynolds", "relative_reynolds", "small_eccentricity_forces",
-           "table_row", "thin_gap_small_kappa"]
+__all__ = ["KAPPA_AXIS", "TABLE_COLUMNS", "build_error_table", "first_order_f_eps", "frame_forces",
+           "inertial_error_estimate", "inertial_force_correction", "reduced_reynolds", "relative_reynolds",
+           "small_eccentricity_forces", "table_row", "thin_gap_small_kappa"]
 
 
 def frame_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
@@ -294,41 +314,56 @@ def build_error_table(kappa_nodes, delta_nodes, **mesh) -> np.ndarray:
     return table
 
 
-def inertial_error_estimate(kappa: float, delta_over_a: float, re_a: float, re_b: float) -> float:
+def inertial_error_estimate(kappa, delta_over_a: float, re_a, re_b):
     """Estimated relative error of the quasi-steady Stokes force of the wall rotations.
 
     Parameters
     ----------
-    kappa : float
+    kappa : float or array_like
         Eccentricity ratio in [0, 1).
     delta_over_a : float
         (b - a)/a > 0.
-    re_a, re_b : float
+    re_a, re_b : float or array_like
         Signed relative Reynolds numbers W_a a delta / nu and W_b b delta / nu,
-        W = Omega - chi' (:func:`relative_reynolds`).
+        W = Omega - chi' (:func:`relative_reynolds`); arrays broadcast with ``kappa``.
 
     Returns
     -------
-    float
-        |F^(1)| / |F_Stokes| for the force vector (f_eps, f_chi) on the inner
-        cylinder, with F^(1) the first-order inertial correction (a pure
-        f_eps) of the flow relative to the line of centres: the
-        rotating-frame force (:func:`frame_forces`) is exact and not part
-        of it, and the squeeze eps' is not covered (no frame makes it
-        steady). It equals (delta/a) (2 + kappa^2) zeta |Q(Re_a, Re_b)| /
-        |L(Re_a, Re_b)|, a quadratic over a linear form with tabulated
-        coefficients, so it grows like the reduced Reynolds number
-        Re* = max(|Re_a|, |Re_b|) delta/a. Zero when nothing turns; inf when
-        the Stokes force vanishes and inertia does not. The torque's error is
-        of second order in Re and smaller. Accuracy and range:
-        :mod:`lubrication._inertia_table`.
+    float or ndarray
+        |F^(1)| / (|R_chi_a W_a| + |R_chi_b W_b|): the first-order inertial
+        correction F^(1) of the flow relative to the line of centres (a pure
+        f_eps) against the sum of the magnitudes of the two rotational terms
+        of the Stokes force f_chi = R_chi_a W_a + R_chi_b W_b, a scale that
+        does not cancel when the walls counter-rotate (it is |f_chi| when
+        they turn in the same sense). The rotating-frame force
+        (:func:`frame_forces`) is exact and not part of it, and the squeeze
+        eps' is not covered (no frame makes it steady). It equals
+        (delta/a) (2 + kappa^2) zeta |Q(Re_a, Re_b)| / (|L_a Re_a| + |L_b Re_b|),
+        a quadratic over a linear form with tabulated coefficients, so it
+        grows like the reduced Reynolds number Re* = max(|Re_a|, |Re_b|)
+        delta/a, and it is below Re*/10 for every motion (module docstring).
+        Zero when nothing turns. The torque's error is of second order in Re
+        and smaller. Accuracy and range: :mod:`lubrication._inertia_table`.
     """
-    kappa = check_range("kappa", kappa, 0.0, 1.0)
     d = check_range("delta_over_a", delta_over_a, 0.0, math.inf, low_open=True)
-    re_a, re_b = check_finite("re_a", re_a), check_finite("re_b", re_b)
+    kappa_arr, re_a_arr, re_b_arr = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (kappa, re_a, re_b)))
+    if kappa_arr.ndim == 0:
+        kappa = check_range("kappa", float(kappa_arr), 0.0, 1.0)
+        re_a, re_b = check_finite("re_a", float(re_a_arr)), check_finite("re_b", float(re_b_arr))
+    else:
+        if not np.all((kappa_arr >= 0.0) & (kappa_arr < 1.0)):
+            msg = "kappa must be in [0, 1) everywhere"
+            raise ValueError(msg)
+        for name, values in (("re_a", re_a_arr), ("re_b", re_b_arr)):
+            if not np.all(np.isfinite(values)):
+                msg = f"{name} must be finite everywhere"
+                raise ValueError(msg)
     from ._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
 
-    return _error_estimate(kappa, d, re_a, re_b, KAPPA_NODES, DELTA_NODES, TABLE)
+    if kappa_arr.ndim == 0:
+        return _error_estimate(kappa, d, re_a, re_b, KAPPA_NODES, DELTA_NODES, TABLE)
+    flat = [np.ascontiguousarray(v).ravel() for v in (kappa_arr, re_a_arr, re_b_arr)]
+    return _error_estimates(*flat, d, KAPPA_NODES, DELTA_NODES, TABLE).reshape(kappa_arr.shape)
 
 
 def inertial_force_correction(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
@@ -338,7 +373,8 @@ def inertial_force_correction(annulus: Annulus, motion: Motion, fluid: Fluid) ->
     W = Omega - chi' and the coefficients of
     :func:`lubrication.navier_stokes.first_inertial_correction` interpolated
     from :mod:`lubrication._inertia_table`; f_chi and T_a have no first-order
-    term. Valid to about 1% while Re* <= 1 (docs/inertia/inertia.md). The
+    term. With it the Stokes force is off by O(Re*^2): 9e-5 of it at Re* = 1,
+    8e-4 at Re* = 3 (docs/inertia/inertia.md). The
     rotating-frame force (:func:`frame_forces`) is separate and exact; the
     squeeze eps' is not covered.
 
@@ -347,11 +383,22 @@ def inertial_force_correction(annulus: Annulus, motion: Motion, fluid: Fluid) ->
     FluidForces
         (f_eps^(1), 0, 0) in N, N, N m; ``model="inertia-first-order"``.
     """
+    f_eps = first_order_f_eps(annulus.kappa, annulus.delta_over_a, annulus.a, fluid.rho, annulus.length,
+                              motion.w_a, motion.w_b)
+    return FluidForces(float(f_eps), 0.0, 0.0, model="inertia-first-order")
+
+
+def first_order_f_eps(kappa, delta_over_a: float, a: float, rho, length: float, w_a, w_b):
+    """f_eps^(1) (N) of :func:`inertial_force_correction` for arrays of states (kappa, rho, W_a, W_b broadcast).
+
+    ``a`` (m), ``rho`` (kg/m^3), ``length`` (m); W = Omega - chi' in rad/s.
+    """
     from ._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
 
-    f_eps = _first_order_f_eps(annulus.kappa, annulus.delta_over_a, annulus.a, fluid.rho, annulus.length,
-                               motion.w_a, motion.w_b, KAPPA_NODES, DELTA_NODES, TABLE)
-    return FluidForces(f_eps, 0.0, 0.0, model="inertia-first-order")
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (kappa, rho, w_a, w_b)))
+    flat = [np.ascontiguousarray(v).ravel() for v in arrays]
+    return _first_order_f_eps_along(*flat, float(delta_over_a), float(a), float(length), KAPPA_NODES, DELTA_NODES,
+                                    TABLE).reshape(arrays[0].shape)
 
 
 @jit(inline="always")
@@ -383,15 +430,31 @@ def _first_order_f_eps(kappa, d, a, rho, length, w_a, w_b, kappa_nodes, delta_no
 
 @jit
 def _error_estimate(kappa, d, re_a, re_b, kappa_nodes, delta_nodes, table):
-    """The ratio of the interpolated first-order and Stokes forces (see inertial_error_estimate)."""
+    """The interpolated first-order force over |R_a W_a| + |R_b W_b| (see inertial_error_estimate)."""
     c = _interpolate(kappa, d, kappa_nodes, delta_nodes, table)
-    stokes = abs(c[0] * re_a + c[1] * re_b)
+    stokes_scale = abs(c[0] * re_a) + abs(c[1] * re_b)
     inertial = abs(c[2] * re_a * re_a + 2.0 * c[3] * re_a * re_b + c[4] * re_b * re_b)
     if inertial == 0.0:
         return 0.0
-    if stokes == 0.0:
-        return math.inf
-    # (a^2/nu) |m C m| / |R m| with m = (W_a, W_b) = nu (Re_a, Re_b a/b) / (a delta); the
-    # kappa of the normalisation cancels, leaving the factor below
+    # (a^2/nu) |m C m| / (|R_a m_a| + |R_b m_b|) with m = (W_a, W_b) = nu (Re_a, Re_b a/b) / (a delta);
+    # the kappa of the normalisation cancels, leaving the factor below
     zeta = math.sqrt((1.0 - kappa) * (1.0 + kappa))
-    return d * (2.0 + kappa * kappa) * zeta * inertial / stokes
+    return d * (2.0 + kappa * kappa) * zeta * inertial / stokes_scale
+
+
+@jit
+def _error_estimates(kappa, re_a, re_b, d, kappa_nodes, delta_nodes, table):
+    """:func:`_error_estimate` along 1-D arrays of states."""
+    out = np.empty(kappa.size)
+    for i in range(kappa.size):
+        out[i] = _error_estimate(kappa[i], d, re_a[i], re_b[i], kappa_nodes, delta_nodes, table)
+    return out
+
+
+@jit
+def _first_order_f_eps_along(kappa, rho, w_a, w_b, d, a, length, kappa_nodes, delta_nodes, table):
+    """:func:`_first_order_f_eps` along 1-D arrays of states."""
+    out = np.empty(kappa.size)
+    for i in range(kappa.size):
+        out[i] = _first_order_f_eps(kappa[i], d, a, rho[i], length, w_a[i], w_b[i], kappa_nodes, delta_nodes, table)
+    return out

@@ -71,7 +71,8 @@ _A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME = range
 
 #: How the equations treat the fluid's inertia in the frame of the line of centres: "paper" is
 #: (2.1)-(2.2) as printed, m_eff on every term of r''; "quasi-steady" carries m'_a instead of
-#: m_eff on the centripetal and Coriolis terms (:func:`frame_force`).
+#: m_eff on the centripetal and Coriolis terms while the fluid turns with the line of centres
+#: (:func:`frame_force`; its effect on trajectories: docs/inertia/inertia.md).
 FRAME_TERMS = ("paper", "quasi-steady")
 
 
@@ -86,30 +87,61 @@ def params_array(apparatus, frame_terms: str = "paper") -> np.ndarray:
 
 
 @jit(inline="always")
-def frame_force(p, eps, eps_dot, chi_dot):
+def frame_force(p, eps, eps_dot, chi_dot, omega_a=math.nan, omega_b=math.nan):
     """(f_eps, f_chi) that (2.1)-(2.2) leave out when the fluid turns with the line of centres (N).
 
-    In the frame turning with the line of centres at chi', the centrifugal and
-    Coriolis forces of a plane flow are gradients (2 Omega z x u = 2 Omega grad psi),
-    so they only shift the pressure: the velocity field, hence the viscous force,
-    is that of the relative motion, and the pressure shift pushes the inner
-    cylinder with -m''_a chi'^2 eps e_eps + 2 m''_a chi' eps' e_chi (a buoyancy in
-    the centrifugal field). A fluid in rigid rotation about B with the inner
-    cylinder at rest in it makes the point exactly: it needs the force m'_a eps chi'^2
-    towards B, which (2.2) as printed writes m_eff eps chi'^2. Carrying m'_a
-    instead of m_eff on the centripetal and Coriolis terms is adding
-    (m_eff - m'_a)(-eps chi'^2 e_eps + 2 eps' chi' e_chi). The frame argument needs
-    a line of centres that turns steadily: the force is faded out where the
-    centres nearly coincide (kappa ~ 0.05), where chi' is not a frame rate.
+    Steady flow in a turning frame. In a frame turning at a steady rate Omega
+    about B, the centrifugal and Coriolis forces of a plane flow are gradients
+    (2 Omega e_z x u = 2 Omega grad psi), so they only shift the pressure, and
+    the pressure shift pushes the displaced fluid's disc with
+    m''_a (-Omega^2 r + 2 Omega J v), v = r' - Omega J r the velocity of A in
+    that frame (J: a quarter turn in the positive sense, J e_eps = e_chi):
+    in all m''_a (Omega^2 r + 2 Omega J r'), or along (e_eps, e_chi)
+
+        m''_a (eps Omega (Omega - 2 chi'),  2 Omega eps').
+
+    For Omega = chi' (the frame of the line of centres, where the walls are
+    fixed in shape) this is -m''_a chi'^2 eps e_eps + 2 m''_a chi' eps' e_chi.
+    A fluid in rigid rotation with the inner cylinder at rest in it makes the
+    point: it needs the force m'_a eps chi'^2 towards B, which (2.2) as printed
+    writes m_eff eps chi'^2. With the paper's fluid force taken in the frame of
+    the fluid's centre of mass the missing force carries m''_a (1 + m''_a/m_f)
+    = m_eff - m'_a, and adding it puts m'_a instead of m_eff on the
+    centripetal and Coriolis terms (lubrication.navier_stokes).
+
+    The frame rate. The argument needs a frame in which the flow is steady.
+    The line of centres is that frame while the fluid turns with it. It stops
+    being one as A passes near B: chi' = (e_chi . r')/eps grows without bound
+    while the walls, and the fluid between them, turn at finite rates, and
+    the force above would grow like |r'|^2/eps. Every part of the fluid turns
+    at a rate between those of its walls (circular Couette flow), so the rate
+    used is chi' clipped to [min(Omega_a, Omega_b), max(Omega_a, Omega_b)].
+    This has no free constant, and it
+
+    * is chi' wherever chi' lies between the wall rates: the runaway and the
+      approach to contact, where Omega_a ~ Omega_b ~ chi';
+    * is exact when the fluid turns rigidly (Omega_a = Omega_b): at eps -> 0 it
+      tends to the Coriolis force 2 m''_a Omega J r' on a disc crossing a
+      rigidly turning fluid, finite where the chi' form diverges;
+    * elsewhere exceeds the chi' form by m''_a (1 + m''_a/m_f) (eps W^2, 2 W eps'),
+      W = Omega_nearer - chi' the relative rate of the wall nearer in rate to
+      chi'. Along e_eps that is at most (1 + m''_a/m_f) (delta/a) Re*/6 of the
+      thin-gap Stokes force (2.6) of that wall's rotation (0.14 Re* for the
+      apparatus): the order of the inertial error G Re* of the relative flow
+      (G up to 0.08 there, :mod:`lubrication.inertia`), which the quasi-steady
+      forces carry anyway.
+
+    ``omega_a``, ``omega_b`` omitted: the fluid is taken to turn with the line
+    of centres (Omega = chi'), as in contact, where Omega_a ~ Omega_b ~ chi'.
     Zero unless the parameters ask for it (``frame_terms = "quasi-steady"``).
     """
     if p[_FRAME] == 0.0:
         return 0.0, 0.0
-    delta = p[_B] - p[_A]
-    kappa = eps / delta
-    fade = kappa * kappa / (kappa * kappa + 0.0025)
-    extra = fade * (p[_MEFF] - p[_MRED])
-    return -extra * eps * chi_dot * chi_dot, 2.0 * extra * eps_dot * chi_dot
+    rate = chi_dot
+    if not math.isnan(omega_a):
+        rate = min(max(chi_dot, min(omega_a, omega_b)), max(omega_a, omega_b))
+    extra = p[_MEFF] - p[_MRED]
+    return extra * eps * rate * (rate - 2.0 * chi_dot), 2.0 * extra * rate * eps_dot
 
 
 @jit(inline="always")
@@ -168,7 +200,7 @@ def rhs(t, y, args):
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
     f_eps, f_chi, t_a = evaluate(model, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
                                  omega_b - chi_dot)
-    frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot)
+    frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
     f_eps += frame_eps
     f_chi += frame_chi
     fluid = force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
