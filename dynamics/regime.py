@@ -44,7 +44,7 @@ def classify(trajectory) -> tuple[str, dict]:
     growth = float(omega_b[-1] - omega_b[late][0])
     evidence = {"turns_of_phi_late": turns, "phi_reversals_late": swings, "final_kappa": float(kappa[-1]),
                 "omega_b_tau_growth_late": growth, "stop_event": trajectory.event}
-    if trajectory.event in ("runaway", "reynolds") or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late][0])):
+    if trajectory.event == "runaway" or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late][0])):
         return "runaway", evidence
     phase = c.get("phase")
     if phase is not None and phase[late].size and np.all(phase[late] == phase[-1]) and phase[-1] in _ROLLING:

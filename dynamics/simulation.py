@@ -28,7 +28,7 @@ from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 from dynamics.equations import full, reduced
 from dynamics.equations.forces import ForceModel, force_model
-from dynamics.equations.limits import LIMIT_EVENTS, Limits, inertia_report, limit_message
+from dynamics.equations.limits import LIMIT_EVENTS, Limits, estimated_force_error, inertia_report, limit_message
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.integrate import METHODS, integrate
@@ -388,7 +388,13 @@ class _Run:
             sampled = np.nonzero((kind[keep] & SAMPLE) != 0)[0]
             columns["t"][sampled] = self.t_eval[:sampled.size]
         rows = _row_labels(kind[keep], names[keep])
-        status, message, event = self._status(fields, columns)
+        # the estimated inertial error at each Reynolds event's row, quoted in its message
+        at_reynolds = np.nonzero(names[keep] == "reynolds")[0]
+        error_at = {}
+        if at_reynolds.size and not self.dimensionless:
+            row_columns = {name: column[at_reynolds] for name, column in columns.items()}
+            error_at = dict(zip(t_tau[at_reynolds], estimated_force_error(self.system, row_columns)))
+        status, message, event = self._status(fields, columns, error_at)
         on_event = np.nonzero((kind & EVENT) != 0)[0]
         along = [{"name": names[i], "t": float(fields["t"][i]) * tau} for i in on_event]
         warned = [e for e in along if e["name"] in LIMIT_EVENTS and e["name"] != event]
@@ -406,9 +412,10 @@ class _Run:
             if not self.dimensionless:
                 trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns)
         if warned:
-            trajectory.info["limits_passed"] = [dict(w, reason=limit_message(w["name"], self.limits,
-                                                                             self._when(w["t"] / tau)))
-                                                for w in warned]
+            t_of = {id(e): float(fields["t"][i]) for e, i in zip(along, on_event)}  # in tau, as error_at's keys
+            trajectory.info["limits_passed"] = [
+                dict(w, reason=limit_message(w["name"], self.limits, self._when(t_of[id(w)]),
+                                             error_at.get(t_of[id(w)]))) for w in warned]
         if self.t_eval is not None:  # the rows asked for: the samples, events, start, and the end once
             shown = (kept & (START | SAMPLE | EVENT)) != 0
             last = kept.size - 1
@@ -424,14 +431,14 @@ class _Run:
     def _when(self, t_tau: float) -> str:
         return f"t = {t_tau * self.tau:.6g} {self.unit}"
 
-    def _status(self, fields: dict, columns: dict) -> tuple[str, str, str]:
-        """(status, message with units, stop event)."""
-        t_last = float(columns["t"][-1]) / self.tau if columns["t"].size else 0.0
+    def _status(self, fields: dict, columns: dict, error_at: dict) -> tuple[str, str, str]:
+        """(status, message with units, stop event); ``error_at``: the estimated inertial error by event time."""
+        t_last = float(columns["t_tau"][-1]) if columns["t"].size else 0.0
         stop = fields["stop"]
         if fields["status_code"] == 0:
             return "completed", f"reached t_end = {self.t_end:.6g} {self.unit}", ""
         if fields["status_code"] == 1 and stop in LIMIT_EVENTS:
-            return "stopped", limit_message(stop, self.limits, self._when(t_last)), stop
+            return "stopped", limit_message(stop, self.limits, self._when(t_last), error_at.get(t_last)), stop
         if fields.get("code") == INTERRUPTED:
             by = fields["message"].split(" at t = ")[0]  # "interrupted" or "interrupted by SIGTERM"
             return "interrupted", f"{by} at {self._when(t_last)}", ""

@@ -62,16 +62,24 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
         options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
         if model.ends != "infinite":
             options.update(ends=model.ends, length_over_a=scene.apparatus.length / scene.apparatus.a)
+        if model.inertia != "none":
+            if model.forces not in ("closed-form", "stokes-exact", "stokes") or model.ends != "infinite":
+                raise _refuse("model.inertia", "the first inertial correction is tabulated for plane flow and "
+                                               "added to model.forces = 'closed-form' or 'stokes-exact' with "
+                                               "model.ends = 'infinite'")
+            options.update(inertia=True, rho=scene.apparatus.rho)
         if cavitation is not None:
             options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
         try:
             forces = force_model(model.forces, **options)
         except ValueError as err:
             raise _refuse("model.ends", str(err)) from err
-    elif model.ends != "infinite" or model.frame_terms != "paper":
-        key = "model.ends" if model.ends != "infinite" else "model.frame_terms"
-        raise _refuse(key, "the reduced equations (2.11) are per unit length of an infinitely long annulus and "
-                           "drop the O(delta/a) frame terms; this needs model.equations = 'full'")
+    elif model.ends != "infinite" or model.frame_terms != "paper" or model.inertia != "none":
+        key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
+                                  ("model.frame_terms", True)) if v)
+        raise _refuse(key, "the reduced equations (2.11) are leading order: per unit length of an infinitely long "
+                           "annulus, in Stokes flow, without the O(delta/a) frame terms; this needs "
+                           "model.equations = 'full'")
     run = scene.run
     limits, reach = run.limits, None
     if model.equations == "full" and model.forces == "reynolds" and model.grid == "uniform":

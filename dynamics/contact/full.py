@@ -125,7 +125,7 @@ def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model)
     cx, cz = ez, -ex
     f_eps, f_chi, t_a = evaluate(model, a, b, p[3], p[2], kappa_star, omk_star, 0.0, omega_a - chi_dot,
                                  omega_b - chi_dot)
-    frame_eps, frame_chi = full.frame_force(p, eps, 0.0, chi_dot)
+    frame_eps, frame_chi = full.frame_force(p, eps, 0.0, chi_dot, omega_a, omega_b)
     fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
     gravity = full.gravity_response(p)
     base = np.empty(4)

@@ -106,6 +106,10 @@ class Model:
     ends: str = key("infinite", help="'infinite': per unit length of an infinitely long annulus; 'open': the gap "
                                      "opens into end regions at z = +-L/2 (finite-length factors on the closed "
                                      "forms or the exact Stokes forces)", choices=ENDS)
+    inertia: str = key("none", help="full equations, closed-form or stokes-exact forces: 'first-order' adds the "
+                                    "first inertial correction of the flow relative to the line of centres "
+                                    "(docs/inertia: the error left is second order in Re*)",
+                       choices=("none", "first-order"))
     frame_terms: str = key("paper", help="full equations: 'paper' is (2.1)-(2.2) as printed; 'quasi-steady' "
                                          "carries m'_a, not m_eff, on the centripetal and Coriolis terms, as a "
                                          "fluid turning with the line of centres requires", choices=FRAME_TERMS)
