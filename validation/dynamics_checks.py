@@ -364,7 +364,9 @@ def distinguished_limit(ratios=RATIOS) -> dict:
     diffs = {k: [] for k in SPIN_PLANE}
     for ratio in ratios:
         apparatus = Apparatus.from_groups(s, ups, mu, ratio)
-        run = simulate(apparatus, LIMIT_START, LIMIT_WINDOW * apparatus.tau, forces=closed_form(), rtol=LIMIT_RTOL)
+        # a limit of the equations: the inertial guard, a statement about the fluid, is lifted
+        run = simulate(apparatus, LIMIT_START, LIMIT_WINDOW * apparatus.tau, forces=closed_form(), rtol=LIMIT_RTOL,
+                       limits=Limits(max_gap_reynolds=None))
         got = _scaled(run, t_tau)
         for k in SPIN_PLANE:
             diffs[k].append(float(np.max(np.abs(got[k] - ref[k]))))
