@@ -8,19 +8,11 @@ import numpy as np
 import pytest
 
 from dynamics.app.cli import main
-from dynamics.app.sweeps.sweep import (
-    NUMBERS,
-    SweepError,
-    classify_point,
-    load_sweep,
-    parse_sweep,
-    plot_regime_map,
-    point_key,
-    read_rows,
-    run_point,
-    run_sweep,
-    slope_limits,
-)
+from dynamics.app.sweeps.plot import plot_regime_map, slope_limits
+from dynamics.app.sweeps.point import classify_point, run_point
+from dynamics.app.sweeps.run import run_sweep
+from dynamics.app.sweeps.spec import SweepError, load_sweep, parse_sweep, point_key
+from dynamics.app.sweeps.store import NUMBERS, Table, read_rows
 from dynamics.simulation import Trajectory
 
 # mu_ = 1 and Upsilon = 1 as in the paper's figures 2 (s = 1/4 rocks) and 3 (s = 0.9 runs away).
@@ -112,7 +104,20 @@ def test_a_failing_point_is_recorded_and_the_sweep_goes_on(tmp_path, scheduler):
     failed = rows["reduced", "0.1"]
     assert (failed["status"], failed["regime"]) == ("failed", "failed")
     assert "SceneError: initial.kappa_dot must be 0" in failed["reason"]
-    assert all(r["status"] == "completed" for key, r in rows.items() if key != ("reduced", "0.1"))
+    assert all(r["status"] in ("completed", "stopped") for key, r in rows.items() if key != ("reduced", "0.1"))
+
+
+def test_the_table_keeps_every_digit_of_the_axes_and_refuses_other_columns(tmp_path):
+    path = tmp_path / "sweep.csv"
+    kappa = 0.1 + 0.7 * np.random.default_rng(3).random()  # a random axis's value: all 17 digits
+    row = {"initial.kappa": kappa, "point": "p", "status": "completed", "final_kappa": 2.0 / 3.0}
+    with Table(path, ["initial.kappa"]) as table:
+        table.append([row])
+    (read,) = read_rows(path)
+    assert float(read["initial.kappa"]) == kappa  # the point's value, not a rounding of it
+    assert read["final_kappa"] == "0.6666667"  # numbers to 7 digits
+    with pytest.raises(SweepError, match="has the columns initial.kappa, point"):
+        Table(path, ["groups.s"])
 
 
 def test_a_failed_trajectory_is_failed_with_the_numbers_it_reached():

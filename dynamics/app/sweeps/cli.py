@@ -41,7 +41,9 @@ def register(subparsers) -> None:
 
 def _run_sweep(args) -> int:
     from dynamics.app.cli import UsageError
-    from dynamics.app.sweeps.sweep import SweepError, load_sweep, run_sweep
+    from dynamics.app.sweeps.plot import save_regime_map
+    from dynamics.app.sweeps.run import run_sweep
+    from dynamics.app.sweeps.spec import SweepError, load_sweep
     from dynamics.scenes import SceneError
 
     try:
@@ -50,7 +52,7 @@ def _run_sweep(args) -> int:
                            max_points=args.max_points)
     except (SweepError, SceneError, ImportError) as err:
         raise UsageError(str(err)) from err
-    _draw_map(sweep, result.csv_path)
+    save_regime_map(sweep, result.csv_path)
     regimes = ", ".join(f"{n} {name}" for name, n in sorted(result.regimes.items(), key=lambda kv: -kv[1]))
     print(f"{result.computed} points computed in {result.compute_time_s:.1f} s "
           f"({result.points_per_second:.1f} points/s on {result.workers} workers), "
@@ -61,20 +63,3 @@ def _run_sweep(args) -> int:
         print(f"{result.points - result.already_done - result.computed} points left: run the same command "
               "again to finish")
     return 0
-
-
-def _draw_map(sweep, csv_path) -> None:
-    """``regime_map.png`` in the plane of the first two axes with more than one value, if there are two."""
-    import matplotlib.pyplot as plt
-
-    from dynamics.app.sweeps.sweep import plot_regime_map, read_rows
-    from lubrication.files import save_figure
-
-    rows = read_rows(csv_path)
-    plane = [a for a in sweep.axes if len({r[a.key] for r in rows}) > 1]
-    if len(plane) < 2 or not all(isinstance(v, (int, float)) for a in plane[:2] for v in a.values):
-        return
-    x, y = plane[:2]
-    fig = plot_regime_map(rows, x.key, y.key, log_x=x.log, log_y=y.log)
-    save_figure(csv_path.parent / "regime_map.png", fig, dpi=120)
-    plt.close(fig)

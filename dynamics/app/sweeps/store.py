@@ -1,0 +1,127 @@
+"""The results of a sweep on disk: ``sweep.csv``, one row per point, appended as points finish; ``sweep.json``.
+
+``sweep.csv`` has the axis keys, ``point`` (:func:`dynamics.app.sweeps.spec.point_key`)
+and then :data:`NUMBERS`. Rows are appended as batches arrive and flushed to disk,
+so a crash loses at most the batches in flight and leaves at worst a last line
+cut short, which :func:`read_rows` ignores and :class:`Table` drops before
+appending. A sweep started again in the same folder runs only the points whose
+key the table lacks. ``sweep.json``, the manifest, holds the fingerprint of the
+sweep (:meth:`dynamics.app.sweeps.spec.Sweep.fingerprint`): a folder is resumed
+only by the same sweep.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from dynamics.app.sweeps.spec import Sweep, SweepError
+
+__all__ = ["CSV_NAME", "MANIFEST_NAME", "NUMBERS", "Table", "check_manifest", "read_rows"]
+
+CSV_NAME = "sweep.csv"
+MANIFEST_NAME = "sweep.json"
+
+# What each row records after the axis values and the point key, in this order.
+NUMBERS = (
+    "status",  # how the run ended: completed, stopped (an event), failed or interrupted
+    "regime",  # one of dynamics.app.sweeps.point.REGIMES
+    "t_end_tau",  # time reached, in tau
+    "final_kappa",  # kappa at the end: near 1 when the inner cylinder has sunk to the wall
+    "turns_of_phi_late",  # turns of the line of centres over the second half: >= 1 winds round
+    "phi_reversals_late",  # swings of phi over the second half: >= 2 rocks
+    "omega_b_tau_growth_late",  # change of Omega_b tau over the second half: > 0 accelerates
+    "omega_b_tau_final",  # Omega_b tau at the end
+    "omega_b_change_late",  # (max - min of Omega_b over the second half) / |Omega_b| at the end: <1% rolls steadily
+    "phi_range_late",  # max - min of phi over the second half (rad): ~0 steady
+    "stop_event",  # the event that stopped the run: runaway, gap_floor, reynolds, or empty
+    "steps",  # accepted integrator steps
+    "wall_time_s",  # time spent on this point, building the scene included
+    "reason",  # why the point failed; empty otherwise
+)
+
+
+def _format(value: Any) -> Any:
+    """Floats to 7 significant digits (the table stays small); axis values are written separately."""
+    if isinstance(value, float):
+        return f"{value:.7g}"
+    return value
+
+
+def read_rows(path: str | os.PathLike) -> list[dict[str, str]]:
+    """The complete rows of a ``sweep.csv`` (a last line cut short by a crash is left out)."""
+    path = Path(path)
+    if not path.exists():
+        return []
+    text = path.read_text(encoding="utf-8")
+    if not text.endswith("\n"):
+        text = text[:text.rfind("\n") + 1]
+    return list(csv.DictReader(text.splitlines()))
+
+
+class Table:
+    """``sweep.csv`` open for appending rows, as a context manager.
+
+    Parameters
+    ----------
+    path : Path
+    keys : sequence of str
+        The sweep's axis keys: the first columns, written as given (every digit);
+        ``point`` and :data:`NUMBERS` follow.
+
+    Raises
+    ------
+    SweepError
+        If the file exists with other columns.
+    """
+
+    def __init__(self, path: Path, keys: Sequence[str]):
+        self.keys = tuple(keys)
+        self.columns = [*self.keys, "point", *NUMBERS]
+        if path.exists() and path.stat().st_size:
+            data = path.read_bytes()
+            header = next(csv.reader([data.split(b"\n", 1)[0].decode()]))
+            if header != self.columns:
+                msg = (f"{path} has the columns {', '.join(header)}, not those of this sweep "
+                       f"({', '.join(self.columns)}); write to another folder (-o DIR)")
+                raise SweepError(msg)
+            if not data.endswith(b"\n"):  # a line cut short by a crash
+                with path.open("r+b") as fh:
+                    fh.truncate(data.rfind(b"\n") + 1)
+            self._file = path.open("a", encoding="utf-8", newline="")
+        else:
+            self._file = path.open("w", encoding="utf-8", newline="")
+            csv.writer(self._file, lineterminator="\n").writerow(self.columns)
+        self._writer = csv.DictWriter(self._file, self.columns, lineterminator="\n")
+
+    def append(self, rows: Iterable[Mapping[str, Any]]) -> None:
+        """Write ``rows`` and flush them to disk."""
+        self._writer.writerows({k: v if k in self.keys else _format(v) for k, v in row.items()} for row in rows)
+        self._file.flush()
+        os.fsync(self._file.fileno())
+
+    def close(self) -> None:
+        self._file.close()
+
+    def __enter__(self) -> Table:
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        self.close()
+        return False
+
+
+def check_manifest(path: Path, sweep: Sweep) -> dict:
+    """The manifest of a folder's sweep ({} if none yet), refused if the folder holds a different sweep."""
+    if not path.exists():
+        return {}
+    manifest = json.loads(path.read_text(encoding="utf-8"))
+    if manifest.get("fingerprint") != sweep.fingerprint():
+        msg = (f"{path.parent} holds the results of another sweep ({manifest.get('source')}, fingerprint "
+               f"{manifest.get('fingerprint')}); write to another folder (-o DIR)")
+        raise SweepError(msg)
+    return manifest
