@@ -24,6 +24,7 @@ import numpy as np
 
 from dynamics.apparatus import Apparatus
 from dynamics.contact import reduced as reduced_contact
+from dynamics.contact.hybrid import Phase, run_phases
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 from dynamics.equations import full, reduced
@@ -206,7 +207,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     if not isinstance(limits, Limits):
         msg = f"limits must be a Limits, got {type(limits).__name__}"
         raise TypeError(msg)
-    _check_start(initial, limits, contact, equations)
+    _check_start(initial, limits, contact, equations, method)
     if frame_terms not in full.FRAME_TERMS:
         msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
         raise ValueError(msg)
@@ -230,8 +231,23 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     return trajectory
 
 
-def _check_start(initial: Initial, limits: Limits, contact, equations: str) -> None:
-    """Refuse a start the run would reject at t = 0, naming the value and the reason."""
+#: 1 - kappa0 below which the full equations are not run with scipy's LSODA (see :func:`_check_start`).
+LSODA_NEAR_CONTACT = 1e-3
+
+
+def _check_start(initial: Initial, limits: Limits, contact, equations: str, method: str) -> None:
+    """Refuse a start the run would reject at t = 0, or that its integrator cannot follow, naming the value
+    and the reason.
+
+    LSODA, a cross-check, stalls in the full equations released near contact: from the default scene's
+    angle at 1 - kappa0 = 1e-4 and 1e-5 it took 200,000 steps for 3 s and 1.8 s (10 s from 1e-2 in 0.2 s),
+    and from 1e-6 it failed outright, while the compiled Radau IIA and scipy's BDF and Radau ran.
+    """
+    if method == "LSODA" and equations == "full" and contact is None and initial.gap < LSODA_NEAR_CONTACT:
+        msg = (f"method = 'LSODA' cannot follow the full equations released within {LSODA_NEAR_CONTACT:g} of "
+               f"contact (initial 1 - kappa = {initial.gap:.3g}): it stalls or fails there; use method = "
+               "'radau' (the compiled Radau IIA, the default) or 'BDF'")
+        raise ValueError(msg)
     one_minus = initial.gap
     if contact is None and one_minus <= limits.gap_floor:
         msg = (f"initial.kappa must leave 1 - kappa above the gap floor {limits.gap_floor:g} (the run would stop "
@@ -245,6 +261,53 @@ def _check_start(initial: Initial, limits: Limits, contact, equations: str) -> N
         msg = ("a minimum gap that varies along the surfaces is modelled in the reduced equations only; use "
                "equations='reduced' or a uniform ContactParams")
         raise ValueError(msg)
+
+
+class _FreeFull:
+    """The free full model as a hybrid run: Cartesian velocity away from contact, polar near it.
+
+    :mod:`dynamics.equations.full` explains why (the Newton iteration near
+    contact) and where (|u| above POLAR_ABOVE, back below CARTESIAN_BELOW); a
+    change of variables is a phase that continues the motion
+    (:class:`dynamics.contact.hybrid.Phase`).
+    """
+
+    def __init__(self, apparatus, args, stops: int, rtol: float):
+        self.ap, self.args = apparatus, args
+        typical = args[2]
+        self.atol = rtol * typical
+        # q_r and q_t are rates of |u|: 1/tau for the size of their absolute tolerance
+        self.polar_atol = rtol * np.array([*typical[:2], 1.0 / apparatus.tau, 1.0 / apparatus.tau, *typical[4:]])
+        self.terminal = (stops, stops, 1, 0, 0, 1)
+
+    def phase(self, y) -> Phase:
+        """The first phase, from state ``y`` of :func:`dynamics.equations.full.rhs`, in the variables its |u| calls for."""
+        if math.hypot(y[0], y[1]) > full.POLAR_ABOVE:
+            return self._polar(full.to_polar(self.ap, y))
+        return self._cartesian(np.asarray(y, float))
+
+    def _cartesian(self, y, continues: bool = False) -> Phase:
+        return Phase("free", full.rhs, full.jacobian, full.cartesian_events, self.args, y, full.CARTESIAN_EVENT_NAMES,
+                     self.terminal, (-1, -1, -1, 0, 1, 1), self.atol, continues=continues, extra={"polar": False})
+
+    def _polar(self, y, continues: bool = False) -> Phase:
+        return Phase("free", full.polar_rhs, full.polar_jacobian, full.polar_events, self.args, y,
+                     full.POLAR_EVENT_NAMES, self.terminal, (-1, -1, -1, 0, 1, -1), self.polar_atol,
+                     continues=continues, extra={"polar": True})
+
+    def transition(self, phase: Phase, reason: str, t: float, end, phi: float) -> Phase:
+        if reason == "to_polar":
+            return self._polar(full.to_polar(self.ap, end), continues=True)
+        return self._cartesian(full.to_cartesian(self.ap, end), continues=True)
+
+    def columns(self, phase: Phase, t, y, kind) -> dict:
+        """Scaled columns of one phase's rows (t in tau, rates in 1/tau, X_b in b)."""
+        ap, tau = self.ap, self.ap.tau
+        observe = full.polar_observables if phase.extra["polar"] else full.observables
+        obs = observe(ap, y, phase.extra["phi0"])
+        return {"kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
+                "kappa_dot": obs["kappa_dot"] * tau, "phi_dot": obs["phi_dot"] * tau, "omega_a": obs["omega_a"] * tau,
+                "omega_b": obs["omega_b"] * tau, "x_b": obs["x_b"] / ap.b}
 
 
 def _check_reynolds_at_start(g: np.ndarray, limits: Limits) -> None:
@@ -325,20 +388,12 @@ class _Run:
         y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                                 initial.omega_a, initial.omega_b, one_minus_kappa=initial.gap)
         _check_reynolds_at_start(full.events(0.0, y0, args), limits)
-        stops = int(limits.stops)
-        run = integrate(full.rhs, full.jacobian, (0.0, self.t_end), y0, args=args, method=self.method,
-                        rtol=self.rtol, atol=self.rtol * args[2], events=full.events,
-                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=self.t_eval, steps=True,
-                        max_steps=self.max_steps, progress=self.progress)
-        obs = full.observables(ap, run.y, initial.phi)
-        fields = {"t": run.t / self.tau, "kind": run.kind, "event_names": _names(run.event, full.EVENT_NAMES),
-                  "kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
-                  "kappa_dot": obs["kappa_dot"] * self.tau, "phi_dot": obs["phi_dot"] * self.tau,
-                  "omega_a": obs["omega_a"] * self.tau, "omega_b": obs["omega_b"] * self.tau,
-                  "x_b": obs["x_b"] / ap.b,
-                  "stop": full.EVENT_NAMES[run.stop_event] if run.stop_event >= 0 else "",
-                  "code": run.code, "status_code": run.status, "message": run.message,
-                  "steps": run.steps, "nfev": run.nfev, "njev": run.njev, "nlu": run.nlu}
+        free = _FreeFull(ap, args, int(limits.stops), self.rtol)
+        fields = run_phases(free.phase(y0), free.transition, free.columns, self.t_end, phi0=initial.phi,
+                            method=self.method, rtol=self.rtol, t_eval=self.t_eval, steps=True,
+                            max_steps=self.max_steps, progress=self.progress)
+        del fields["phase"]  # one free phase in two sets of variables, no contact
+        fields = dict(fields, t=fields["t"] / self.tau, stop=fields["stop_event"], status_code=fields["status"])
         return self._trajectory(fields, "full", model.name, ap.reduced_params)
 
     # -- rows to a Trajectory ---------------------------------------------------------------
@@ -353,9 +408,10 @@ class _Run:
 
     @staticmethod
     def _keep(fields: dict) -> np.ndarray:
-        """Rows to keep: the crossings of the vertical keep phi continuous, and are not rows a user asked for."""
+        """Rows to keep: not the crossings of the vertical (they keep phi continuous) nor the changes of
+        variables of the free full model, which are no rows a user asked for."""
         kind, names = fields["kind"], fields["event_names"]
-        return ~(((kind & EVENT) != 0) & (names == "turn") & ((kind & ~EVENT) == 0))
+        return ~(((kind & EVENT) != 0) & np.isin(names, _HIDDEN_EVENTS) & ((kind & ~EVENT) == 0))
 
     def _trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
         """Columns in the output units from scaled rows (t in tau, rates in 1/tau, X_b in b).
@@ -449,6 +505,10 @@ class _Run:
             if word in message:
                 message = message.split(word)[0] + self._when(t_last)
         return "failed", message, ""
+
+
+#: Events that are no rows a user asked for: quarter turns, and changes of variables.
+_HIDDEN_EVENTS = ("turn", "to_polar", "to_cartesian")
 
 
 def _rows(columns: dict, rows: np.ndarray, mask: np.ndarray) -> tuple[dict, np.ndarray]:

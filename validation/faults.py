@@ -20,6 +20,7 @@ from __future__ import annotations
 import contextlib
 import io
 import math
+import re
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -175,6 +176,7 @@ def run_case(case: Case) -> Outcome:
             except SystemExit as exit_:
                 code = exit_.code
         text = (err.getvalue() + out.getvalue()).replace(str(tmp), "<tmp>")
+        text = re.sub(r"steps in [0-9.]+ s", "steps in <time> s", text)  # wall times vary from run to run
         left = code == 2 and (tmp / "out").exists()  # refused input leaves nothing; a stopped run keeps its data
         intact = (tmp / "full" / "notes.txt").read_text() == "keep me"
         return Outcome(case, f"exit {code}", text, "Traceback" not in text and not left and intact)

@@ -24,13 +24,14 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from dynamics.engine import END
+from dynamics.engine import END, START
 from dynamics.integrate import integrate
 
 __all__ = ["MAX_SWITCHES", "SWITCHES", "Phase", "Switch", "run_phases"]
 
-#: Events that end a phase, not the run.
-SWITCHES = ("touch", "lift", "stick", "slip")
+#: Events that end a phase, not the run: contact switches, and changes of the variables a free
+#: full-model run is carried in (:mod:`dynamics.equations.full`).
+SWITCHES = ("touch", "lift", "stick", "slip", "to_polar", "to_cartesian")
 
 #: A run that switched this often is caught in a pathological cycle and stops with that reason. Figure 7's
 #: run switches once, runs near the onset of sliding (stick-slip while rocking) some 20 times.
@@ -69,6 +70,10 @@ class Phase:
     record : bool
         Record the change into this phase as a :class:`Switch` (False restarts
         a phase without one).
+    continues : bool
+        The same motion as the phase before, in other variables: no switch is
+        recorded and the phase's first row, a repeat of the switching state,
+        is not output.
     """
 
     name: str
@@ -83,6 +88,7 @@ class Phase:
     atol: np.ndarray
     sigma: float = 0.0
     record: bool = True
+    continues: bool = False
     extra: dict = field(default_factory=dict)
 
 
@@ -144,7 +150,10 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
         cols = columns(phase, run.t, run.y, run.kind)
         if run.t.size:
             phi = float(cols["phi"][-1])
-        pieces.append((t0 + run.t, run.kind, np.full(run.t.size, phase.name), names, cols))
+        repeat = pieces and phase.continues and run.kind.size and run.kind[0] & START
+        rows = slice(1 if repeat else 0, None)
+        pieces.append((t0 + run.t[rows], run.kind[rows], np.full(run.t[rows].size, phase.name), names[rows],
+                       {key: value[rows] for key, value in cols.items()}))
         name = phase.event_names[run.stop_event] if run.stop_event >= 0 else ""
         status, message, code = run.status, run.message, run.code
         if name not in SWITCHES:
@@ -159,7 +168,7 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
             break
         old = phase.name
         phase = transition(phase, name, t_switch, run.y[:, -1], phi)
-        if phase.record:
+        if phase.record and not phase.continues:
             switches.append(Switch(t_switch, old, phase.name))
         t0 = t_switch
         # the state at the switch is the first row of the next phase: mark the last row as an event only

@@ -36,6 +36,25 @@ cancellation, and
 
 At eps = 0 exactly the direction e_eps is taken along r', which makes the
 motion purely radial there (the resistance is isotropic at kappa = 0).
+
+Near contact the Cartesian velocity is a poor variable for an implicit
+integrator: the squeeze force -R e_eps . r' (R ~ zeta^-3) is then bilinear in
+the direction of u and in r', whose tangential part eps chi' dwarfs the radial
+one (~ zeta^3), so the simplified Newton iteration of Radau IIA converges only
+for steps in which the line of centres hardly turns (measured: 10-30 times the
+steps of BDF from 1 - kappa = 1e-4, no progress at 1e-7). A free run therefore
+carries, once |u| exceeds :data:`POLAR_ABOVE`, the velocity in the frame of the
+line of centres (:func:`polar_rhs`): q_r = d|u|/dt = kappa'/zeta^3 and
+q_t = |u| chi', in which the squeeze force is linear,
+
+    eps' = delta q_r / s^3,   eps chi' = delta q_t / s,   s = sqrt(1 + |u|^2),
+    q_r' = s^3 a_r + s^2 q_t^2 / |u| + 3 |u| q_r^2 / s^2,
+    q_t' = s a_t + (q_r q_t / |u|)(1 - 2/s^2),
+
+a_r, a_t the components of r''/delta along e_eps and e_chi (from differentiating
+kappa = |u|/s twice in polar form). These are singular at |u| = 0, so the run
+returns to the Cartesian velocity below :data:`CARTESIAN_BELOW`; both switches
+are events located on the dense output (:mod:`dynamics.contact.hybrid`).
 """
 
 from __future__ import annotations
@@ -48,7 +67,19 @@ from dynamics.equations.forces import ForceModel, evaluate
 from lubrication._jit import jit
 
 __all__ = [
+    "CARTESIAN_BELOW",
+    "CARTESIAN_EVENT_NAMES",
     "EVENT_NAMES",
+    "POLAR_ABOVE",
+    "POLAR_EVENT_NAMES",
+    "POLAR_STATE_NAMES",
+    "cartesian_events",
+    "polar_events",
+    "polar_jacobian",
+    "polar_observables",
+    "polar_rhs",
+    "to_cartesian",
+    "to_polar",
     "FRAME_TERMS",
     "frame_force",
     "STATE_NAMES",
@@ -65,6 +96,11 @@ __all__ = [
 ]
 
 STATE_NAMES = ("u_x", "u_z", "v_x", "v_z", "omega_a", "omega_b", "x_b")
+#: The state near contact (:func:`polar_rhs`): the velocity in the frame of the line of centres.
+POLAR_STATE_NAMES = ("u_x", "u_z", "q_r", "q_t", "omega_a", "omega_b", "x_b")
+#: |u| = kappa/zeta above which a free run carries the polar velocity (kappa = 0.894), and below which
+#: it returns to the Cartesian one (kappa = 0.707): apart, so that a run near either does not chatter.
+POLAR_ABOVE, CARTESIAN_BELOW = 2.0, 1.0
 
 # indices into the parameter array built by params_array
 _A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME = range(13)
@@ -188,37 +224,97 @@ def gravity_response(p):
     return (m_r * gs - m_r * b * omega_b_dot) / m_eff, -m_r * gc / m_eff, 0.0, omega_b_dot
 
 
+@jit(inline="always")
+def _accelerations(p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b):
+    """(x'', z'', Omega_a', Omega_b') of (2.1)-(2.4) in a state given by its geometry and rates."""
+    f_eps, f_chi, t_a = evaluate(model, p[_A], p[_B], p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
+                                 omega_b - chi_dot)
+    frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
+    fluid = force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
+    gravity = gravity_response(p)
+    return (fluid[0] + gravity[0], fluid[1] + gravity[1], fluid[2] + gravity[2], fluid[3] + gravity[3])
+
+
 @jit
 def rhs(t, y, args):
     """dy/dt of the full model; ``args`` from :func:`run_args` (the parameters, then the force model's data)."""
     p, model = args[0], args[1]
-    a, b = p[_A], p[_B]
-    delta = b - a
+    delta = p[_B] - p[_A]
     kappa, omk, zeta, eps, big_u, ex, ez = _geometry(y, delta)
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
     eps_dot = ex * vx + ez * vz
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
-    f_eps, f_chi, t_a = evaluate(model, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
-                                 omega_b - chi_dot)
-    frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
-    f_eps += frame_eps
-    f_chi += frame_chi
-    fluid = force_response(p, eps, ex, ez, f_eps, f_chi, t_a)
-    gravity = gravity_response(p)
+    rates = _accelerations(p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b)
     dy = np.empty(7)
     scale = 1.0 / (delta * zeta)
     stretch = big_u * big_u * eps_dot
     dy[0] = (vx + stretch * ex) * scale
     dy[1] = (vz + stretch * ez) * scale
     for i in range(4):
-        dy[2 + i] = fluid[i] + gravity[i]
-    dy[6] = b * omega_b
+        dy[2 + i] = rates[i]
+    dy[6] = p[_B] * omega_b
     return dy
 
 
+@jit(inline="always")
+def _polar_geometry(y):
+    """|u|, s^2 = 1 + |u|^2, s, kappa, 1 - kappa and e_eps of a state with |u| > 0."""
+    big_u = math.hypot(y[0], y[1])
+    s2 = 1.0 + big_u * big_u
+    s = math.sqrt(s2)
+    kappa = big_u / s
+    return big_u, s2, s, kappa, 1.0 / (s2 * (1.0 + kappa)), y[0] / big_u, y[1] / big_u
+
+
 @jit
-def jacobian(t, y, args):
-    """d(rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
+def polar_rhs(t, y, args):
+    """dy/dt of the full model near contact, state :data:`POLAR_STATE_NAMES` (module docstring)."""
+    p, model = args[0], args[1]
+    delta = p[_B] - p[_A]
+    big_u, s2, s, kappa, omk, ex, ez = _polar_geometry(y)
+    cx, cz = ez, -ex  # e_chi
+    q_r, q_t, omega_a, omega_b = y[2], y[3], y[4], y[5]
+    rates = _accelerations(p, model, kappa, omk, kappa * delta, ex, ez, delta * q_r / (s2 * s), q_t / big_u,
+                           omega_a, omega_b)
+    a_r = (ex * rates[0] + ez * rates[1]) / delta
+    a_t = (cx * rates[0] + cz * rates[1]) / delta
+    dy = np.empty(7)
+    dy[0] = q_r * ex + q_t * cx
+    dy[1] = q_r * ez + q_t * cz
+    dy[2] = s2 * s * a_r + s2 * q_t * q_t / big_u + 3.0 * big_u * q_r * q_r / s2
+    dy[3] = s * a_t + (q_r * q_t / big_u) * (1.0 - 2.0 / s2)
+    dy[4] = rates[2]
+    dy[5] = rates[3]
+    dy[6] = p[_B] * omega_b
+    return dy
+
+
+def to_polar(apparatus, y: np.ndarray) -> np.ndarray:
+    """A state of :func:`rhs` (Cartesian velocity) as one of :func:`polar_rhs`; needs |u| > 0."""
+    big_u = math.hypot(y[0], y[1])
+    s = math.sqrt(1.0 + big_u * big_u)
+    ex, ez = y[0] / big_u, y[1] / big_u
+    out = np.array(y, dtype=float)
+    out[2] = s**3 * (ex * y[2] + ez * y[3]) / apparatus.delta
+    out[3] = s * (ez * y[2] - ex * y[3]) / apparatus.delta
+    return out
+
+
+def to_cartesian(apparatus, y: np.ndarray) -> np.ndarray:
+    """A state of :func:`polar_rhs` as one of :func:`rhs`."""
+    big_u = math.hypot(y[0], y[1])
+    s = math.sqrt(1.0 + big_u * big_u)
+    ex, ez = y[0] / big_u, y[1] / big_u
+    radial, tangential = apparatus.delta * y[2] / s**3, apparatus.delta * y[3] / s
+    out = np.array(y, dtype=float)
+    out[2] = radial * ex + tangential * ez
+    out[3] = radial * ez - tangential * ex
+    return out
+
+
+@jit(inline="always")
+def _central_differences(fun, t, y, args):
+    """d(fun)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
     balanced at h ~ eps^(1/3) |y|: about 1e-11 relative, far below what the
@@ -231,13 +327,25 @@ def jacobian(t, y, args):
     for j in range(n):
         h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
         yp[j] = y[j] + h
-        up = rhs(t, yp, args)
+        up = fun(t, yp, args)
         yp[j] = y[j] - h
-        down = rhs(t, yp, args)
+        down = fun(t, yp, args)
         yp[j] = y[j]
         for i in range(n):
             jac[i, j] = (up[i] - down[i]) / (2.0 * h)
     return jac
+
+
+@jit
+def jacobian(t, y, args):
+    """d(rhs)/dy (:func:`_central_differences`)."""
+    return _central_differences(rhs, t, y, args)
+
+
+@jit
+def polar_jacobian(t, y, args):
+    """d(polar_rhs)/dy (:func:`_central_differences`)."""
+    return _central_differences(polar_rhs, t, y, args)
 
 
 #: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
@@ -250,8 +358,8 @@ _LOG_FLOOR, _MAX_RE, _RE_A, _RE_B, _XB_LIMIT, _XB0, _U_STAR = range(7)
 
 
 @jit(inline="always")
-def reduced_reynolds(y, args):
-    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of state ``y``.
+def _reynolds(kappa, chi_dot, omega_a, omega_b, args):
+    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi'.
 
     The Reynolds number of the flow relative to the line of centres, which
     measures the error of quasi-steady Stokes forces (:mod:`lubrication.inertia`:
@@ -259,32 +367,68 @@ def reduced_reynolds(y, args):
     of centres is undefined (kappa -> 0) chi' is not, and Re* is faded out over
     kappa ~ 1e-3.
     """
-    p, ev = args[0], args[3]
-    delta = p[_B] - p[_A]
+    ev = args[3]
+    fade = kappa * kappa / (kappa * kappa + 1e-6)
+    return fade * max(abs(omega_a - chi_dot) * ev[_RE_A], abs(omega_b - chi_dot) * ev[_RE_B])
+
+
+@jit(inline="always")
+def reduced_reynolds(y, args):
+    """Re* (:func:`_reynolds`) of a state ``y`` of :func:`rhs`."""
     big_u = math.hypot(y[0], y[1])
-    kappa = big_u / math.sqrt(1.0 + big_u * big_u)
     if big_u == 0.0:
         return 0.0
+    p = args[0]
+    kappa = big_u / math.sqrt(1.0 + big_u * big_u)
     ex, ez = y[0] / big_u, y[1] / big_u
-    chi_dot = (ez * y[2] - ex * y[3]) / (kappa * delta)
-    fade = kappa * kappa / (kappa * kappa + 1e-6)
-    return fade * max(abs(y[4] - chi_dot) * ev[_RE_A], abs(y[5] - chi_dot) * ev[_RE_B])
+    return _reynolds(kappa, (ez * y[2] - ex * y[3]) / (kappa * (p[_B] - p[_A])), y[4], y[5], args)
+
+
+@jit(inline="always")
+def _event_values(y, args, big_u, re_star, g):
+    """The first five event values (:data:`EVENT_NAMES`) into ``g``."""
+    ev = args[3]
+    one_plus = 1.0 + big_u * big_u
+    kappa = big_u / math.sqrt(one_plus)
+    omk = 1.0 / (one_plus * (1.0 + kappa))
+    g[0] = math.log(omk) - ev[_LOG_FLOOR]
+    g[1] = ev[_MAX_RE] - re_star
+    g[2] = ev[_XB_LIMIT] - abs(y[6] - ev[_XB0])
+    g[3] = y[0] * y[1]
+    g[4] = big_u - ev[_U_STAR]
 
 
 @jit
 def events(t, y, args):
     """The event values of :data:`EVENT_NAMES`; each fires as it falls through (or rises to) 0."""
-    ev = args[3]
-    big_u = math.hypot(y[0], y[1])
-    one_plus = 1.0 + big_u * big_u
-    kappa = big_u / math.sqrt(one_plus)
-    omk = 1.0 / (one_plus * (1.0 + kappa))
     g = np.empty(5)
-    g[0] = math.log(omk) - ev[_LOG_FLOOR]
-    g[1] = ev[_MAX_RE] - reduced_reynolds(y, args)
-    g[2] = ev[_XB_LIMIT] - abs(y[6] - ev[_XB0])
-    g[3] = y[0] * y[1]
-    g[4] = big_u - ev[_U_STAR]
+    _event_values(y, args, math.hypot(y[0], y[1]), reduced_reynolds(y, args), g)
+    return g
+
+
+#: The events of a free run in each representation: :data:`EVENT_NAMES` and the change of representation.
+CARTESIAN_EVENT_NAMES = (*EVENT_NAMES, "to_polar")
+POLAR_EVENT_NAMES = (*EVENT_NAMES, "to_cartesian")
+
+
+@jit
+def cartesian_events(t, y, args):
+    """:func:`events` and |u| - POLAR_ABOVE (rising through 0: the run goes on in :func:`polar_rhs`)."""
+    g = np.empty(6)
+    big_u = math.hypot(y[0], y[1])
+    _event_values(y, args, big_u, reduced_reynolds(y, args), g)
+    g[5] = big_u - POLAR_ABOVE
+    return g
+
+
+@jit
+def polar_events(t, y, args):
+    """:data:`POLAR_EVENT_NAMES` of a state of :func:`polar_rhs`; |u| - CARTESIAN_BELOW falls through 0 to return."""
+    g = np.empty(6)
+    big_u = math.hypot(y[0], y[1])
+    kappa = big_u / math.sqrt(1.0 + big_u * big_u)
+    _event_values(y, args, big_u, _reynolds(kappa, y[3] / big_u, y[4], y[5], args), g)
+    g[5] = big_u - CARTESIAN_BELOW
     return g
 
 
@@ -360,6 +504,14 @@ def observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
         "omega_b": y[5],
         "x_b": y[6],
     }
+
+
+def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
+    """As :func:`observables`, from states of :func:`polar_rhs`."""
+    big_u = np.hypot(y[0], y[1])
+    s = np.sqrt(1.0 + big_u**2)
+    return observables(apparatus, np.vstack([y[:2], np.zeros((2, y.shape[1])), y[4:]]), phi0) | {
+        "kappa_dot": y[2] / s**3, "phi_dot": y[3] / big_u}
 
 
 def model_arguments(force_model: ForceModel) -> tuple:
