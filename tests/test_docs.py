@@ -9,9 +9,10 @@ its outputs (the gallery's pages, the generated API pages, the HTML) never touch
 the working tree. A page with a reference to a missing function is planted in the
 mirror: the build must fail on it, and on nothing else.
 
-The build takes about a minute with numba's cache warm: those tests are marked slow.
-The code blocks fenced as ```python in the pages run in the default test run, as the
-README's do; a block that needs a file of the reader's is a ``{code-block}`` instead.
+The build takes about a minute with numba's cache warm (the tests before these warm it),
+and runs in the default test run, which installs the docs extra. The code blocks fenced as
+```python in the pages run too, as the README's do; a block that needs a file of the
+reader's is a ``{code-block}`` instead.
 """
 
 from __future__ import annotations
@@ -82,21 +83,18 @@ def _text(page: Path) -> str:
     return html.unescape(re.sub(r"<[^>]+>", "", page.read_text()))
 
 
-@pytest.mark.slow
 def test_a_broken_reference_fails_the_build(build):
     code, warnings, _, stderr = build
     assert code != 0, "a reference to a missing function must fail a build with -W"
     assert any("no_such_function" in w and "reference target not found" in w for w in warnings), stderr[-3000:]
 
 
-@pytest.mark.slow
 def test_nothing_else_warns(build):
     _, warnings, _, stderr = build
     others = [w for w in warnings if "no_such_function" not in w]
     assert not others, "\n".join(others) + "\n" + stderr[-3000:]
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("page", ["index", "getting_started", "physics", "force_models", "equations_of_motion",
                                   "inertia", "contact", "cavitation", "corrections", "speed_accuracy", "sweeps",
                                   "cli", "scenes", "validation", "building", "citing", "api/index",
@@ -106,7 +104,6 @@ def test_the_page_is_built(build, page):
     assert (out / f"{page}.html").is_file()
 
 
-@pytest.mark.slow
 def test_the_executed_example_has_its_figure_and_output(build):
     _, _, out, _ = build
     page = (out / "auto_examples" / f"{EXECUTED}.html").read_text()
@@ -121,7 +118,6 @@ def _documented_actions(parser: argparse.ArgumentParser) -> list[argparse.Action
             if not isinstance(a, argparse._HelpAction | argparse._SubParsersAction)]
 
 
-@pytest.mark.slow
 def test_the_command_line_reference_has_every_subcommand_and_option(build):
     from dynamics.app.cli import build_parser
 
@@ -144,7 +140,6 @@ def test_the_command_line_reference_has_every_subcommand_and_option(build):
     assert not missing
 
 
-@pytest.mark.slow
 def test_the_scene_reference_has_every_key_with_its_range(build):
     from dynamics.scenes.schema import SECTIONS
 
@@ -158,7 +153,6 @@ def test_the_scene_reference_has_every_key_with_its_range(build):
     assert not missing
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("module", ["lubrication.forces", "dynamics.simulation", "dynamics.scenes.schema",
                                     "dynamics.engine", "dynamics.contact.reduced", "dynamics.app.run"])
 def test_the_api_reference_documents_what_the_module_exports(build, module):

@@ -308,8 +308,8 @@ def test_steady_rolling_on_a_cavitating_film_is_recognised(cavitation):
     first 0.02 s, the ruptured film lets the flow relative to the line of centres
     pass the default Reynolds guard Re* = 10: the runs warn there and go on.
     """
-    from dynamics.app.regime import STEADY_SPREAD, classify
     from dynamics.app.run import run_scene
+    from dynamics.regime import STEADY_SPREAD, classify
     from dynamics.scenes import load_scene
 
     base = ["model.forces=reynolds", "model.n=128", "run.t_end=20", "run.on_invalid='warn'"]

@@ -90,7 +90,6 @@ from typing import NamedTuple
 import numpy as np
 from scipy.special import ellipe
 
-from dynamics.app.regime import classify
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations.forces import closed_form
 from dynamics.equations.limits import Limits
@@ -110,6 +109,7 @@ from dynamics.equations.special import (
     steady_rolling,
 )
 from dynamics.initial import Initial
+from dynamics.regime import classify
 from dynamics.simulation import Trajectory, simulate
 
 from .checks import Check, Finding, absolute, at_least, at_most, relative
@@ -800,6 +800,6 @@ def _paragraph(steep: dict, paper_slope: dict, maps: dict, seconds: float) -> st
         f"s b/a = {ap.s * ap.b / ap.a:.2f}) {np.mean(full5 == 1):.0%} of the starts from rest ran away, "
         f"where the reduced model with the same groups rocks from {np.mean(maps[(5.0, 'reduced')] == 0):.0%} "
         f"of them; at 4 degrees the full model rocks from {np.mean(maps[(4.0, 'full')] == 0):.0%}. The "
-        "regime is dynamics.app.regime.classify over 6 s; a runaway is stopped after 20 turns of the outer "
+        "regime is dynamics.regime.classify over 6 s; a runaway is stopped after 20 turns of the outer "
         f"cylinder. The group ran in {seconds:.0f} s."
     )

@@ -36,11 +36,11 @@ from pathlib import Path
 
 import numpy as np
 
-from dynamics.app.regime import classify
 from dynamics.apparatus import preset
 from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
+from dynamics.regime import classify
 from dynamics.simulation import Trajectory, simulate
 
 from .checks import Check, Finding, absolute, at_least, at_most
@@ -96,7 +96,7 @@ class Pair:
         return self.mean_speed("stokes") / self.mean_speed("closed-form")
 
     def regime(self, forces: str) -> str:
-        """Regime of the run with ``forces`` (:func:`dynamics.app.regime.classify`)."""
+        """Regime of the run with ``forces`` (:func:`dynamics.regime.classify`)."""
         return classify(self.runs[forces])[0]
 
     @property

@@ -128,18 +128,20 @@ snail_api_groups = [
         "lubrication", "lubrication.forces", "lubrication.geometry", "lubrication.closed_form",
         "lubrication.reynolds", "lubrication.cavitation", "lubrication.stokes_exact", "lubrication.stokes",
         "lubrication.reynolds2d", "lubrication.finite_length", "lubrication.stokes3d",
-        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.files",
+        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film_transport", "lubrication.files",
     ]),
     ("Compiled kernels of the force models", [
         "lubrication._kernels", "lubrication._cavitation_kernels", "lubrication._kernels2d",
-        "lubrication._stokes_mesh", "lubrication._inertia_table", "lubrication._jit",
+        "lubrication._stokes_mesh", "lubrication._inertia_table", "lubrication._film_kernels", "lubrication._jit",
     ]),
     ("Simulation", [
-        "dynamics", "dynamics.simulation", "dynamics.initial", "dynamics.apparatus", "dynamics.keys",
+        "dynamics", "dynamics.simulation", "dynamics.regime", "dynamics.initial", "dynamics.apparatus",
+        "dynamics.keys",
     ]),
     ("Equations of motion", [
         "dynamics.equations", "dynamics.equations.full", "dynamics.equations.reduced",
         "dynamics.equations.forces", "dynamics.equations.special", "dynamics.equations.limits",
+        "dynamics.equations.film",
     ]),
     ("Rough contact", [
         "dynamics.contact", "dynamics.contact.reduced", "dynamics.contact.full", "dynamics.contact.hybrid",
@@ -152,8 +154,10 @@ snail_api_groups = [
     ]),
     ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "dynamics.scenes.units"]),
     ("The application: runs, files, sweeps, the command", [
-        "dynamics.app", "dynamics.app.run", "dynamics.app.output", "dynamics.app.figures", "dynamics.app.regime",
-        "dynamics.app.auto", "dynamics.app.folder", "dynamics.app.cli", "dynamics.app.sweeps.sweep",
-        "dynamics.app.sweeps.cli",
+        "dynamics.app", "dynamics.app.run", "dynamics.app.output", "dynamics.app.figures",
+        "dynamics.app.auto", "dynamics.app.folder", "dynamics.app.cli", "dynamics.app.sweeps",
+        "dynamics.app.sweeps.spec", "dynamics.app.sweeps.point", "dynamics.app.sweeps.compiled",
+        "dynamics.app.sweeps.batch", "dynamics.app.sweeps.store", "dynamics.app.sweeps.run",
+        "dynamics.app.sweeps.plot", "dynamics.app.sweeps.cli",
     ]),
 ]

@@ -6,7 +6,7 @@ From rest, the reduced model (2.11) either rocks down towards contact
 (figure 2) or runs away (figure 3), depending on the slope group :math:`s` and
 on the release. Here a 20 x 12 grid of (:math:`s`, initial :math:`\kappa`) at the
 paper's :math:`\Upsilon = \bar\mu = 1`, released straight above the centre, each run
-100 :math:`\tau` long and classified by :func:`dynamics.app.regime.classify`, the
+100 :math:`\tau` long and classified by :func:`dynamics.regime.classify`, the
 rule ``snail run`` and ``snail sweep`` report. ``snail sweep`` runs the same thing
 on dask for thousands of points (:doc:`/sweeps`; the slow example "A parameter
 sweep on dask" does it from Python).
@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from dynamics import Initial, ReducedParams
-from dynamics.app.regime import classify
+from dynamics.regime import classify
 from dynamics.simulation import simulate
 
 slopes = np.linspace(0.05, 1.2, 20)

@@ -16,7 +16,7 @@ the documentation is built with ``SNAIL_DOCS_EXAMPLES=all`` (it needs the
 import tempfile
 from pathlib import Path
 
-from dynamics.app.sweeps.sweep import parse_sweep, plot_regime_map, read_rows, run_sweep
+from dynamics.app.sweeps import parse_sweep, plot_regime_map, read_rows, run_sweep
 
 sweep = parse_sweep("""
 [base]

@@ -23,17 +23,28 @@ One module per concept, each importing only those before it:
 ``cli``
     The ``snail sweep`` command.
 
-The public names are importable from here (loaded on first use, so that the
-``snail`` command pays for none of them until it runs a sweep) and from
-:mod:`dynamics.app.sweeps.sweep`.
+The public names are importable from here, loaded on first use, so that the
+``snail`` command pays for none of them until it runs a sweep.
 """
+
+from importlib import import_module
+
+_WHERE = {
+    "plot_regime_map": "plot", "save_regime_map": "plot", "slope_limits": "plot",
+    "REGIMES": "point", "classify_point": "point", "run_point": "point",
+    "SweepResult": "run", "run_sweep": "run",
+    "Axis": "spec", "Sweep": "spec", "SweepError": "spec", "load_sweep": "spec", "overrides": "spec",
+    "parse_sweep": "spec", "point_key": "spec",
+    "CSV_NAME": "store", "MANIFEST_NAME": "store", "NUMBERS": "store", "read_rows": "store",
+}
+
+__all__ = sorted(_WHERE)
 
 
 def __getattr__(name: str):
-    import importlib
-
-    sweep = importlib.import_module(f"{__name__}.sweep")
-    if name in sweep.__all__:
-        return getattr(sweep, name)
+    if name in _WHERE:
+        value = getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+        globals()[name] = value
+        return value
     msg = f"module {__name__!r} has no attribute {name!r}"
     raise AttributeError(msg)
