@@ -277,7 +277,7 @@ def run(rtols=RTOLS, repeats: int = REPEATS, models=MODELS, seed: int = 0) -> di
     ap, initial, settings = scene.apparatus, scene.initial, scene.run
     for _ in range(repeats):
         wall, _, trajectory = _timed(lambda: simulate(ap, initial, settings.t_end, forces=closed_form(),
-                                                      rtol=settings.rtol))
+                                                      rtol=settings.rtol, limits=settings.limits))
         scene_runs.append(wall)
     return {
         "machine": _machine(),

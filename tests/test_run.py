@@ -163,6 +163,35 @@ def test_the_first_inertial_correction_is_a_scene_choice(tmp_path, capsys):
         assert code == 2 and "model.inertia" in err and not (tmp_path / "refused").exists()
 
 
+def test_output_interval_rows_from_the_command_line(tmp_path, capsys):
+    """snail run --output-interval "0.1 s" on the default scene: 101 rows at k 0.1 s exactly (the event of
+    the release's Reynolds passage kept and marked), each on the every-step run's solution to the run's
+    tolerance (compared at the sampled times through the dense output of a tighter run), phi unwrapped."""
+    from dynamics.scenes import load_scene
+    from dynamics.simulation import simulate
+
+    out = tmp_path / "run"
+    assert main(["run", "-o", str(out), "--output-interval", "0.1 s", "--no-plot", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    lines = (out / "trajectory.csv").read_text().splitlines()
+    header, rows = lines[0].split(","), [line.split(",") for line in lines[1:]]
+    labels = [r[-1] for r in rows]
+    samples = np.array([[float(x) for x in r[:-1]] for r, label in zip(rows, labels) if "sample" in label])
+    assert len(samples) == 101 and labels[0] == "start+sample" and labels[-1] == "sample+end"
+    assert {label for label in labels if "sample" not in label} == {"event:reynolds"}
+    t = samples[:, header.index("t")]
+    np.testing.assert_array_equal(t, 0.1 * np.arange(101))
+    scene = load_scene()
+    dense = simulate(scene.apparatus, scene.initial, 10.0, rtol=1e-11, limits=scene.run.limits, t_eval=t)
+    keep = np.array(["sample" in row for row in dense.rows])
+    for name in ("phi", "x_b", "one_minus_kappa"):
+        got, want = samples[:, header.index(name)], dense.columns[name][keep]
+        # the run's rtol 1e-8: measured 2-6e-10 relative (the tolerance holds the local error of a step)
+        np.testing.assert_allclose(got, want, rtol=1e-8, atol=1e-12)
+    assert np.all(np.abs(np.diff(samples[:, header.index("phi")])) < np.pi)  # continuous, not wrapped
+    assert summary["regime"] == "rocking"
+
+
 @jit
 def _decay(t, y, args):
     """y' = -y."""
