@@ -1,8 +1,10 @@
 r"""Cost and accuracy of the Reynolds solver on (theta, z) against N x n_axial.
 
 The case is the paper's apparatus (a = 0.8 cm, b = 1.125 cm, L = 10.35 cm,
-L/a = 12.94), thin gap, open ends, at kappa = 0.6 and 0.99, one motion per
-solve (the unit inner rotation: f_chi and T_a; the squeeze is timed alike).
+L/a = 12.94), thin gap, open ends, at kappa = 0.6 and 0.99 and near contact,
+1 - kappa = 1e-6 and 1e-9 (passed in directly), one motion per solve (the unit
+inner rotation: f_chi and T_a; the squeeze is timed alike). Near contact the
+theta grid is the graded one of :func:`lubrication.reynolds2d.default_clustering`.
 
 Methods, each timed per solve, JIT compilation excluded:
 
@@ -68,7 +70,7 @@ from lubrication.reynolds2d import (
 A, B, LENGTH = 0.008, 0.01125, 0.1035  # the paper's apparatus (Table 2), m
 FLUID = Fluid(nu=2.0e-4, rho=960.0)
 FLUID_MU = FLUID.mu  # a global the jitted loop freezes at compilation
-KAPPAS = (0.6, 0.99)
+GAPS = (0.4, 0.01, 1e-6, 1e-9)  # 1 - kappa
 SIZES = ((32, 16), (64, 32), (128, 64), (256, 128), (512, 256))  # (N, n_axial)
 SPARSE_SIZES = SIZES[:4]  # the sparse LU of (512, 256) costs seconds per solve
 REFERENCE = (4096, 2048)
@@ -80,13 +82,13 @@ STAGES = ("assemble", "solve", "forces")  # timed separately for the sparse-LU b
 
 @njit
 def _modal_loop(repeats, kappa, omk, eps_dot, w_a, kappa_g, omk_g, rule, cell_rule, m, lam, coef, half, end):
-    cpsi, spsi, vpsi, ppsi, wpsi = rule
+    cpsi, spsi, vpsi, ppsi, wpsi, stretch = rule
     tpos, lower0, lower1 = cell_rule
     total = 0.0
     for _ in range(repeats):
         f_eps, f_chi, t_a = _kernels2d.modal_forces(_kernels.THIN, A, B, FLUID_MU, kappa, omk, eps_dot, w_a, 0.0,
-                                                    kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0,
-                                                    lower1, m, lam, coef, half, end)
+                                                    kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos,
+                                                    lower0, lower1, m, lam, coef, half, end)
         total += f_eps + f_chi + t_a
     return total
 
@@ -158,9 +160,17 @@ def _batch(kind, annulus, motion, n, n_axial):
     return batch
 
 
-def _accuracy(kappa, motion, index):
-    """Relative errors of plain and extrapolated solves against the fine reference (and the limit at kappa = 0)."""
-    annulus = Annulus.from_kappa(A, B, kappa, LENGTH)
+def _annulus(omk: float) -> Annulus:
+    return Annulus(a=A, b=B, length=LENGTH, one_minus_kappa=omk)
+
+
+def _label(omk: float) -> str:
+    return f"kappa = {1.0 - omk:g}" if omk >= 1e-3 else f"1 - kappa = {omk:g}"
+
+
+def _accuracy(omk, motion, index):
+    """Relative errors of plain and extrapolated solves against the fine reference."""
+    annulus = _annulus(omk)
     reference = reynolds2d_forces(annulus, motion, FLUID, n=REFERENCE[0], n_axial=REFERENCE[1],
                                   extrapolate=True).as_tuple()[index]
     neighbour = reynolds2d_forces(annulus, motion, FLUID, n=REFERENCE[0] // 2, n_axial=REFERENCE[1] // 2,
@@ -189,17 +199,17 @@ def _limit_accuracy():
     return rows
 
 
-def run(kappas=KAPPAS, sizes=SIZES, rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed=0) -> dict:
+def run(gaps=GAPS, sizes=SIZES, rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed=0) -> dict:
     """Median seconds per solve of every method at every size, the agreement of the two solvers, the errors."""
     timers, agreement = [], []
-    for kappa in kappas:
-        annulus = Annulus.from_kappa(A, B, kappa, LENGTH)
+    for omk in gaps:
+        annulus = _annulus(omk)
         for name, motion in MOTIONS.items():
             for n, n_axial in sizes:
                 kinds = ("modal jit", "python") + (("sparse LU",) if (n, n_axial) in SPARSE_SIZES else ())
                 for kind in kinds:
                     stages = STAGES if kind == "sparse LU" else ("total",)
-                    timers.append(_Timer((kappa, name, n, n_axial, kind), _batch(kind, annulus, motion, n, n_axial),
+                    timers.append(_Timer((omk, name, n, n_axial, kind), _batch(kind, annulus, motion, n, n_axial),
                                          stages))
                 if (n, n_axial) in SPARSE_SIZES:
                     modal = np.array(_modal_forces(annulus, motion, n, n_axial))
@@ -208,13 +218,13 @@ def run(kappas=KAPPAS, sizes=SIZES, rounds=ROUNDS, batch_seconds=BATCH_SECONDS, 
     start = time.perf_counter()
     times = _time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
     timing_seconds = time.perf_counter() - start
-    records = [{"kappa": k, "motion": name, "n": n, "n_axial": nz, "method": kind, **times[(k, name, n, nz, kind)]}
-               for (k, name, n, nz, kind) in times]
-    accuracy = {f"{kappa}": {name: _accuracy(kappa, motion, 0 if name == "squeeze" else 1)
-                             for name, motion in MOTIONS.items()} for kappa in kappas}
+    records = [{"one_minus_kappa": k, "motion": name, "n": n, "n_axial": nz, "method": kind,
+                **times[(k, name, n, nz, kind)]} for (k, name, n, nz, kind) in times]
+    accuracy = {f"{omk}": {name: _accuracy(omk, motion, 0 if name == "squeeze" else 1)
+                           for name, motion in MOTIONS.items()} for omk in gaps}
     return {"date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
             "machine": _machine(), "timing_seconds": timing_seconds,
-            "case": {"a_m": A, "b_m": B, "length_m": LENGTH, "kappas": list(kappas), "profile": "thin",
+            "case": {"a_m": A, "b_m": B, "length_m": LENGTH, "one_minus_kappa": list(gaps), "profile": "thin",
                      "ends": "open", "points_per_cell": 2, "rounds": rounds, "batch_seconds": batch_seconds,
                      "reference": list(REFERENCE)},
             "solver_agreement_max": max(agreement), "records": records, "accuracy": accuracy,
@@ -232,22 +242,23 @@ def to_markdown(results: dict) -> str:
              f"baseline solves the same discrete system (largest relative difference from the modal solve over "
              f"all cases: {results['solver_agreement_max']:.1e}).")
     lines = ["# Reynolds solver on (theta, z): cost and accuracy", "", machine, "", intro, ""]
-    by_key = {(r["kappa"], r["motion"], r["n"], r["n_axial"], r["method"]): r for r in results["records"]}
-    for kappa in case["kappas"]:
+    by_key = {(r["one_minus_kappa"], r["motion"], r["n"], r["n_axial"], r["method"]): r
+              for r in results["records"]}
+    for omk in case["one_minus_kappa"]:
         for name in MOTIONS:
-            acc = results["accuracy"][f"{kappa}"][name]
+            acc = results["accuracy"][f"{omk}"][name]
             err = {(row["n"], row["n_axial"]): row for row in acc["rows"]}
             note = (f"Errors against the extrapolated ({case['reference'][0]}, {case['reference'][1]}) solve "
                     f"(which moves by {acc['reference_spread']:.0e} from its half-size neighbour).")
             header = ("| N x n_axial | modal jit us (CPU) | python us (CPU) | sparse: assemble + LU + forces us | "
                       "LU alone / modal | error | extrapolated error |")
-            lines += [f"## kappa = {kappa}, {name}", "", note, "", header, "|---|---|---|---|---|---|---|"]
+            lines += [f"## {_label(omk)}, {name}", "", note, "", header, "|---|---|---|---|---|---|---|"]
             for n, n_axial in SIZES:
-                modal = by_key.get((kappa, name, n, n_axial, "modal jit"))
+                modal = by_key.get((omk, name, n, n_axial, "modal jit"))
                 if modal is None:
                     continue
-                python = by_key[(kappa, name, n, n_axial, "python")]
-                sparse = by_key.get((kappa, name, n, n_axial, "sparse LU"))
+                python = by_key[(omk, name, n, n_axial, "python")]
+                sparse = by_key.get((omk, name, n, n_axial, "sparse LU"))
                 e = err[(n, n_axial)]
                 lu = (f"{1e6 * sparse['assemble']:.0f} + {1e6 * sparse['solve']:.0f} + {1e6 * sparse['forces']:.0f}"
                       if sparse else "-")

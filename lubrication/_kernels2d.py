@@ -1,8 +1,10 @@
 r"""numba kernels of the Reynolds solver on (theta, z); the formulation is in :mod:`lubrication.reynolds2d`.
 
-Unknown: phi = (p - p_end)/(12 mu a) at the nodes (psi_j, z_k) of a tensor grid,
-psi uniform and periodic (the cells and cell integrals of
-:mod:`lubrication._kernels`), z in units of a. The discrete equations are
+Unknown: phi = (p - p_end)/(12 mu a) at the nodes (xi_j, z_k) of a tensor grid,
+xi uniform and periodic and mapped to the Sommerfeld angle psi of the grid
+parameter (:mod:`lubrication.reynolds2d`), z in units of a. The cells are those
+of :mod:`lubrication._kernels`, their quadrature weights in psi carrying dpsi/dxi
+(``stretch``). The discrete equations are
 
     (M_z (x) L_theta + K_z (x) M_theta) phi = -(w_z (x) r)
 
@@ -47,23 +49,26 @@ ENTRIES_PER_CELL = 32
 
 
 @jit
-def cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0, lower1,
-                m, h_tab, out):
+def cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos, lower0,
+                lower1, m, h_tab, out):
     """Add to ``out[j]`` the integrals of h^3 over cell j listed by the column constants above.
 
-    Arguments as :func:`lubrication._kernels.cell_integrals`; ``tpos`` (shape (m,))
-    holds the Gauss points' positions in [0, 1] within a cell, and ``lower0``,
-    ``lower1`` (shape (m, m)) integrate the Lagrange interpolant through them:
-    P_0(t_p) = dpsi sum_i lower0[p, i] f_i with f = h^3 dtheta/dpsi at the points
-    (lower1 likewise for P_1), exact for the interpolant, O(dpsi^m) for h.
+    Arguments as :func:`lubrication._kernels.cell_integrals`, whose weights
+    ``wpsi`` are in psi; ``stretch`` (shape (N m,)) is dpsi/dxi at the points, the
+    cells being uniform in xi. ``tpos`` (shape (m,)) holds the Gauss points'
+    positions in [0, 1] within a cell, linear in xi, and ``lower0``, ``lower1``
+    (shape (m, m)) integrate the Lagrange interpolant through them:
+    P_0(t_p) = dxi sum_i lower0[p, i] f_i with f = h^3 dtheta/dxi at the points
+    (lower1 likewise for P_1), exact for the interpolant, O(dxi^m) for h.
     """
     n_cells = spsi.size // m
     zeta_g = math.sqrt(omk_g * (1.0 + kappa_g))
-    dpsi = 2.0 * math.pi / n_cells
+    dxi = 2.0 * math.pi / n_cells
     delta = b - a
     eps = kappa * delta
     vers_weight = kappa >= 0.5  # the same omega as cell_integrals
     f = np.empty(m)
+    h3 = np.empty(m)
     inv_h = np.empty(m)
     jac = np.empty(m)
     sin_t = np.empty(m)
@@ -83,13 +88,14 @@ def cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, 
                 h = h_tab[k + i]
             jac[i] = zeta_g * r
             inv_h[i] = 1.0 / h
-            f[i] = h * h * h * jac[i]
+            h3[i] = h * h * h * jac[i]  # h^3 dtheta/dpsi
+            f[i] = h3[i] * stretch[k + i]  # h^3 dtheta/dxi
             sin_t[i] = s
             om_t[i] = v if vers_weight else -(kappa_g + cpsi[k + i]) * r
         row = out[j]
         for p in range(m):
             t = tpos[p]
-            w = wpsi[k + p] * f[p]
+            w = wpsi[k + p] * h3[p]
             row[M00] += w * (1.0 - t) * (1.0 - t)
             row[M01] += w * t * (1.0 - t)
             row[M11] += w * t * t
@@ -97,7 +103,7 @@ def cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, 
             for i in range(m):
                 p0 += lower0[p, i] * f[i]
                 p1 += lower1[p, i] * f[i]
-            c3 = wpsi[k + p] * jac[p] * dpsi * inv_h[p] ** 3
+            c3 = wpsi[k + p] * jac[p] * dxi * inv_h[p] ** 3
             row[X0] += c3 * p0
             row[X1] += c3 * p1
             row[X0S] += c3 * p0 * sin_t[p]
@@ -493,8 +499,8 @@ def lines_film(integrals_lines, masses_lines, u_a, u_b, phi, outflow, wz, half_s
 
 
 @jit
-def film_lines(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0,
-               lower1, m, h_lines, q_lines, integrals_out, masses_out):
+def film_lines(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos,
+               lower0, lower1, m, h_lines, q_lines, integrals_out, masses_out):
     """Cell integrals and masses of every z-line; a single line for THIN and ECCENTRIC.
 
     ``h_lines``, ``q_lines`` (shape (n_lines, N m)) tabulate a user profile per
@@ -507,13 +513,14 @@ def film_lines(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi
         q_tab = q_lines[k]
         cell_integrals(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, m,
                        h_tab, q_tab, integrals_out[k])
-        cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0, lower1,
-                    m, h_tab, masses_out[k])
+        cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos, lower0,
+                    lower1, m, h_tab, masses_out[k])
 
 
 @jit
 def modal_forces(kind, a, b, mu, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
-                 cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0, lower1, m, lam, coef, half_length, end_weight):
+                 cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos, lower0, lower1, m, lam, coef, half_length,
+                 end_weight):
     """f_eps, f_chi (N) and T_a (N m) over the whole length of a z-independent full film.
 
     For the thin and the eccentric gap; ``lam``, ``coef``, ``half_length`` and
@@ -525,8 +532,8 @@ def modal_forces(kind, a, b, mu, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
     empty = np.empty((1, 0))
     integrals = np.zeros((1, n, N_INTEGRALS))
     masses = np.zeros((1, n, N_MASSES))
-    film_lines(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, tpos, lower0,
-               lower1, m, empty, empty, integrals, masses)
+    film_lines(kind, a, b, kappa, omk, eps_dot, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos,
+               lower0, lower1, m, empty, empty, integrals, masses)
     u_b = (b if kind == ECCENTRIC else a) * w_b
     i_sin, i_chi, i_torque = modal_film(integrals[0], masses[0], a * w_a, u_b, lam, coef, half_length,
                                         end_weight, np.empty((0, n)))

@@ -69,13 +69,13 @@ zeta-axis is log(zeta), in which the rotation's zeta log(1/zeta) deficit is
 linear (on a zeta axis the last coefficients were 30 times larger). The
 kernel forms 1 - F = s H, which keeps its relative precision however long the
 bearing. Below ZETA_MIN the series is continued linearly in log(zeta);
-measured against direct solves at zeta = 5e-3 .. 5e-4: within 2e-5 at
-L/a = 12.9, within 1.5e-3 (a tenth of the deficit) at L/a = 1. Inside the
-table the largest error over random (zeta, L/a) was 2.3e-5, at zeta = 0.014
-and L/a = 1; 4e-6 for zeta > 0.015. The W_b torque factor multiplies a
-coefficient that vanishes like zeta^2 at contact; its error, 3 kappa^2/(2 zeta^2)
-times that of F_chi, is the error of F_chi against the larger entry of the
-torque's row.
+measured against direct solves at zeta = 5e-3 .. 5e-4: within 2e-6 at
+L/a = 12.9, within 1.4e-3 (a tenth of the deficit) at L/a = 1. Inside the
+table the largest error over 150 random (zeta, L/a), L/a from 0.3 to 200,
+was 2.9e-5, at zeta = 0.012 and L/a = 0.94; 1e-5 or less for zeta > 0.02.
+The W_b torque factor multiplies a coefficient that vanishes like zeta^2 at
+contact; its error, 3 kappa^2/(2 zeta^2) times that of F_chi, is the error of
+F_chi against the larger entry of the torque's row.
 """
 
 from __future__ import annotations
@@ -119,7 +119,7 @@ APPARATUS_DELTA_OVER_A = (1.125 - 0.8) / 0.8
 FACTOR_NAMES = RESISTANCE_NAMES
 
 # Table settings; a stored table made with other settings is rebuilt.
-TABLE_VERSION = 1
+TABLE_VERSION = 2
 ZETA_MIN = 0.01
 X0 = 4.0
 #: L/a of the solves that give H at s = 0: exp(-LONG/2) is negligible.
@@ -183,7 +183,8 @@ def short_bearing_factors(kappa: float, length_over_a: float) -> dict[str, float
 
 
 def finite_length_factors(kappa: float, length_over_a: float, *, delta_over_a: float = APPARATUS_DELTA_OVER_A,
-                          profile: str = "thin", n: int = 128, n_axial: int = 64, clustering: float | None = None,
+                          profile: str = "thin", n: int = 128, n_axial: int = 64,
+                          clustering: float | tuple[float, float] | None = None,
                           extrapolate: bool = True) -> dict[str, float]:
     """The five finite/infinite ratios of the resistance coefficients, from the (theta, z) solver.
 
@@ -201,7 +202,8 @@ def finite_length_factors(kappa: float, length_over_a: float, *, delta_over_a: f
     n, n_axial, clustering, extrapolate
         Resolution, as :func:`lubrication.reynolds2d.reynolds2d_forces`. The
         defaults give F_eps and F_chi to 2e-6 or better at the apparatus' length
-        for kappa <= 0.999 (measured against N = 512, n_axial = 256); the W_b
+        for every kappa from 0.3 to 1 - 1e-9 (measured against N = 1024,
+        n_axial = 512, extrapolated, which moves by 1e-8 from half that); the W_b
         torque factor carries that error times 3 kappa^2/(2 zeta^2).
 
     Returns
@@ -238,9 +240,9 @@ def finite_length_factors(kappa: float, length_over_a: float, *, delta_over_a: f
 def _table_resolution(zeta: float) -> int:
     """Cells around the gap for a table node: more near contact, where the peak narrows.
 
-    Measured with the default clustering: at n = 128 the extrapolated factors
-    move by 3e-5 (zeta = 0.05) and 2e-3 (zeta = 0.01) when n doubles; at
-    n = 512, by 6e-7 and 4e-5.
+    Measured with the default grid, the largest over L/a = 4 zeta, 12.94 and 40:
+    at n = 128 the extrapolated factors move by 1.4e-5 (zeta = 0.05) and 5.7e-5
+    (zeta = 0.01) when n doubles; at n = 512, by 7e-7 and 1.1e-6.
     """
     return TABLE_CELLS if zeta >= 0.2 else 4 * TABLE_CELLS if zeta < 0.04 else 2 * TABLE_CELLS
 
@@ -322,7 +324,10 @@ def _table_path():
 
 @lru_cache(maxsize=1)
 def factor_table() -> FactorTable:
-    """The thin-gap factor table: read from the cache folder, or built (about a minute) and stored.
+    """The thin-gap factor table: read from the cache folder, or built and stored.
+
+    Building it takes about 10 s on two cores (measured 9-14 s; 22 s when the
+    solver's kernels are compiled first).
 
     The cache folder is :func:`lubrication.files.cache_folder` (``$SNAIL_CACHE``, else
     ``~/.cache/snail-cylinder``); a file with other settings is rebuilt.

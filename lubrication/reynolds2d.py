@@ -27,24 +27,39 @@ parts), phi = (p - p_end)/(12 mu a).
 
 Discretisation
 --------------
-Tensor grid (psi_j, z_k). In theta the cells of the one-dimensional solver:
-uniform in the Sommerfeld angle psi of a grid parameter kappa_g, with the exact
-cell conductances 1/int h^-3 and the exact squeeze and Couette loads of that
-scheme. In one dimension the Sommerfeld grid kappa_g = kappa makes every
-thin-gap integrand a trigonometric polynomial; in two it does not (the axial
-term carries h^3 dtheta/dpsi ~ (1 + kappa cos psi)^-4, which peaks on the wide
-side), and with kappa_g = kappa the wide half of the gap, theta in (pi/2, 3pi/2),
-gets only a fraction ~ sqrt(1 - kappa^2) of the cells. The grid therefore
-clusters halfway on a logarithmic scale, as the Stokes meshes do
-(:mod:`lubrication._stokes_mesh`): with beta = sqrt((1 - kappa)/(1 + kappa)) the
-Sommerfeld map's tan(theta/2) = beta tan(psi/2) takes beta_g = beta^clustering
-(``clustering`` = 1: the one-dimensional grid, the default for sealed ends;
-0: uniform in theta; default 1/2 for open ends), which gives the narrow gap
-(theta ~ zeta) and the wide side (theta ~ 1) each a fraction ~ zeta^(1/2) of
-the cells. Closer to contact than kappa ~ 0.9999 the
-clustering rises so that the narrow gap keeps a fifth of the cells
-(:func:`default_clustering`): the force is made there, and the wide side,
-whose axial conductance h^3 is then larger by zeta^-6, only holds the end pressure.
+Tensor grid (xi_j, z_k). In theta the cells of the one-dimensional solver,
+with the exact cell conductances 1/int h^-3 and the exact squeeze and Couette
+loads of that scheme, on cells uniform in a computational angle xi mapped by
+
+    tan(theta/2) = beta^c(xi) tan(xi/2),   c(xi) = c_w + (c_n - c_w) cos^2(xi/2),
+
+beta = sqrt((1 - kappa)/(1 + kappa)) ~ zeta/2, zeta = sqrt(1 - kappa^2). A
+constant exponent c_n = c_w = c is the Sommerfeld map with beta_g = beta^c
+(c = 1: the one-dimensional grid, the default for sealed ends, on which every
+thin-gap integrand of the one-dimensional problem is a trigonometric polynomial;
+0: uniform in theta). In two dimensions that is not so (the axial term carries
+h^3 dtheta/dpsi ~ (1 + kappa cos psi)^-4, which peaks on the wide side), and the
+grid has to resolve every angular scale of the pressure: the narrow gap
+(theta ~ zeta), where the force is made, and, for the ends, every theta from
+zeta to 1, since the rotation's pressure decays only algebraically away from
+the narrow gap and each angular scale theta has an end layer a theta long (the
+zeta log(1/zeta) deficit of :mod:`lubrication.finite_length`). A constant c
+gives the narrow gap a share ~ beta^(1 - c) of the cells, the wide side ~ beta^c,
+and the scales between few; ``clustering`` = (c_n, c_w) grades the grid from
+the angular scale beta^c_n at the narrow gap to beta^c_w on the wide side with
+about N/(pi (c_n - c_w) log(1/beta)) cells per e-fold of theta in between. The
+default (:func:`default_clustering`) is c_n = c_w = 1/2 (halfway on a log
+scale, as the Stokes meshes, :mod:`lubrication._stokes_mesh`) while
+beta >= 1/25 (kappa <= 0.9968); closer to contact c_n = 1 - log 5/log(1/beta)
+and c_w = 1 - c_n: the scale 5 beta at the narrow gap, 1/5 on the wide side.
+In the kernels' terms psi = 2 arctan(tan(xi/2) exp(gamma sin^2(xi/2))),
+gamma = (c_n - c_w) log(1/beta), is the Sommerfeld angle of beta_g = beta^c_n,
+and the quadrature weights and cell masses carry dpsi/dxi. Measured at
+L/a = 12.9, n_axial = 64, against grids of 8192 cells: with a single scale, the
+rotation factor's error at N = 128 grew to 2e-3 at 1 - kappa = 1e-6 and
+3e-4 at 1e-9 (where it still moved at N = 8192); the graded grid is second
+order there and its error at N = 128 is 1.8e-5 at 1 - kappa = 1e-6,
+2e-6 at 1e-9 (8e-5 or less for every 1 - kappa from 1e-2 to 1e-12).
 
 In z (units of a) the nodes are graded toward the open end, where the
 pressure boundary layer sits: its width is a times the angular scale of the
@@ -81,13 +96,20 @@ O((L/a)^2) of it (measured: a relative error of 3 at L/a = 0.05, N = 64; with
 the correction 3e-2). On an open end line, where phi = 0, all of the load
 leaves axially: M_theta d = -r.
 
-Accuracy. The error is second order in both directions, O(dpsi^2) + O(ds^2),
+Accuracy. The error is second order in both directions, O(dxi^2) + O(ds^2),
 with smooth maps, and the Richardson combination of a grid and its half
 (``extrapolate``) is fourth order in each direction (tests/test_reynolds2d.py
 measures all four). At L/a = 12.9 and (N, n_axial) = (128, 64) the error
-is 5e-5 to 1.2e-4 plain and 6e-7 to 1.6e-6 extrapolated for kappa from 0 to
-0.99 (benchmarks/results/reynolds2d.md). The linear d leaves an
-O(dpsi^4 (a/L)^2) term, which matters only for bearings shorter than their
+is 5e-5 to 1.2e-4 plain for kappa from 0 to 0.99 and 2.1e-5 or less nearer
+contact, and 1.7e-7 to 1.6e-6 extrapolated for kappa from 0 to 1 - 1e-9
+(benchmarks/results/reynolds2d.md, against (4096, 2048) extrapolated; 1 - kappa
+= 1e-6 in the tests). Near contact the extrapolation needs N >= 64: its half
+grid must itself resolve the graded scales, and from (32, 16) it is worse than
+the plain solve (4e-3 at 1 - kappa = 1e-6). Closer to contact than 1 - kappa ~ 1e-10 the rotation's axial modes meet a
+rounding floor: with n_axial = 512 its factor moved by 8e-7 (1 - F_chi = 5e-6)
+at 1 - kappa = 1e-11 where it should have converged, and at 1e-12 the solver
+is only finite and bounded (tested). The linear d leaves an
+O(dxi^4 (a/L)^2) term, which matters only for bearings shorter than their
 radius: of order 1e-3 at L/a = 0.2 with N = 256, 1e-2 at L/a = 0.1 with N = 128.
 
 Solvers
@@ -159,8 +181,10 @@ MIN_CELLS = 8
 MAX_CELLS = 1 << 16
 MIN_AXIAL_CELLS = 4
 MAX_AXIAL_CELLS = 4096
-#: Angular clustering of the theta grid with open ends (module docstring).
+#: Clustering exponent of the theta grid with open ends away from contact (module docstring).
 DEFAULT_CLUSTERING = 0.5
+#: Near contact the narrow gap's angular scale on the grid is at most this many times beta (module docstring).
+NARROW_SCALE = 5.0
 #: Relative asymmetry below which a gap h(theta, z) counts as mirror-symmetric in z.
 SYMMETRY_TOLERANCE = 1e-13
 
@@ -259,18 +283,94 @@ def tilted_gap(annulus: Annulus, tilt: float, *, azimuth: float = 0.0, tilt_rate
     return GapProfile2D(h=h, h_dot=h_dot)
 
 
-def default_clustering(kappa: float, omk: float) -> float:
-    """max(1/2, 1 - log(10)/log(1/beta)): half on a log scale, and beta^(1 - clustering) >= 1/10.
+def default_clustering(kappa: float, omk: float) -> tuple[float, float]:
+    """The default (narrow, wide) exponents of the theta grid with open ends: (c, 1 - c).
 
-    The narrow gap (theta ~ zeta ~ 2 beta) takes a share ~ 2 beta^(1 - clustering)
-    of the cells; below kappa ~ 0.9999 one half keeps it above 1/5, and beyond,
-    this keeps it there (measured: with 1/2 the factors at 1 - kappa = 1e-8 are
-    wrong by tens of per cent at N = 256; with this, within 2e-5 at N = 128).
+    c = max(1/2, 1 - log(NARROW_SCALE)/log(1/beta)): the single-scale grid
+    beta_g = beta^(1/2) down to beta = 1/NARROW_SCALE^2 (kappa = 0.9968); closer
+    to contact the grid's scale at the narrow gap stays within NARROW_SCALE
+    times beta ~ zeta/2 and the exponent falls to 1 - c toward the wide side,
+    so that every angular scale between them gets cells (module docstring).
     """
     beta_sq = omk / (1.0 + kappa)
-    if beta_sq >= 1.0:
-        return DEFAULT_CLUSTERING
-    return max(DEFAULT_CLUSTERING, 1.0 - 2.0 * math.log(10.0) / math.log(1.0 / beta_sq))
+    if beta_sq * NARROW_SCALE**4 >= 1.0:
+        return DEFAULT_CLUSTERING, DEFAULT_CLUSTERING
+    c = 1.0 - 2.0 * math.log(NARROW_SCALE) / math.log(1.0 / beta_sq)
+    return c, 1.0 - c
+
+
+def grading(kappa: float, omk: float, narrow: float, wide: float) -> float:
+    """gamma = (narrow - wide) log(1/beta) of the graded map (module docstring); 0 for a single-scale grid."""
+    if narrow == wide:
+        return 0.0
+    return 0.5 * (narrow - wide) * math.log((1.0 + kappa) / omk)
+
+
+def _check_clustering(clustering) -> tuple[float, float]:
+    """A number c means (c, c); a pair is (narrow, wide) with 0 <= wide <= narrow <= 1."""
+    pair = (clustering, clustering) if np.ndim(clustering) == 0 else tuple(clustering)
+    ok = len(pair) == 2
+    if ok:
+        try:
+            narrow, wide = (float(c) for c in pair)
+        except (TypeError, ValueError):
+            ok = False
+    if not (ok and 0.0 <= wide <= narrow <= 1.0):
+        msg = (f"clustering must be a number in [0, 1] or a pair (narrow, wide) with "
+               f"0 <= wide <= narrow <= 1, got {clustering!r}")
+        raise ValueError(msg)
+    return narrow, wide
+
+
+def _sommerfeld_angle(xi: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    """psi(xi) and dpsi/dxi of the graded map tan(psi/2) = tan(xi/2) exp(gamma sin^2(xi/2)).
+
+    With c2 = cos^2(xi/2), s2 = sin^2(xi/2) and e = exp(gamma s2),
+    dpsi/dxi = (1 + 2 gamma s2 c2)/(c2/e + s2 e): 1 at xi = 0, exp(-gamma) at xi = pi,
+    positive for gamma >= 0; formed without tan(xi/2), which is infinite at xi = pi.
+    """
+    half = 0.5 * xi
+    s2 = np.sin(half) ** 2
+    c2 = np.cos(half) ** 2
+    e = np.exp(gamma * s2)
+    psi = 2.0 * np.arctan2(np.sin(half) * e, np.cos(half))
+    return psi, (1.0 + 2.0 * gamma * s2 * c2) / (c2 / e + s2 * e)
+
+
+def _half_angle(xi: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+    """sin(psi/2) and cos(psi/2) of the graded map, formed without psi (which rounds near +-pi)."""
+    half = 0.5 * xi
+    y = np.sin(half) * np.exp(gamma * np.sin(half) ** 2)
+    x = np.cos(half)
+    r = np.hypot(x, y)
+    return y / r, x / r
+
+
+@lru_cache(maxsize=64)
+def _theta_rule(n: int, m: int, gamma: float):
+    """The cells' quadrature rule for the kernels and the nodes' psi (cached: a solve at one kappa
+    is repeated for each motion and for the extrapolation's half grid).
+
+    Returns cos, sin, 1 - cos, 1 + cos of psi at the N m Gauss points of N equal
+    cells in xi, the weights (in psi: times dpsi/dxi) and dpsi/dxi itself; and psi
+    at the cell edges. gamma = 0 is the one-dimensional solver's rule, psi = xi.
+    """
+    if gamma == 0.0:
+        rule, nodes = _psi_rule(n, m)
+        stretch = np.ones(n * m)
+        stretch.setflags(write=False)
+        return (*rule, stretch), nodes
+    _, g = np.polynomial.legendre.leggauss(m)
+    xi = _gauss_points(n, m).ravel()
+    _, stretch = _sommerfeld_angle(xi, gamma)
+    sin_half, cos_half = _half_angle(xi, gamma)
+    weights = np.tile(0.5 * (2.0 * np.pi / n) * g, n) * stretch
+    rule = ((cos_half - sin_half) * (cos_half + sin_half), 2.0 * sin_half * cos_half, 2.0 * sin_half**2,
+            2.0 * cos_half**2, weights, stretch)
+    nodes, _ = _sommerfeld_angle(-np.pi + (2.0 * np.pi / n) * np.arange(n), gamma)
+    for arr in (*rule, nodes):  # shared by every caller through the cache
+        arr.setflags(write=False)
+    return rule, nodes
 
 
 def grid_parameter(kappa: float, omk: float, clustering: float) -> tuple[float, float]:
@@ -423,16 +523,16 @@ def _is_symmetric(profile: GapProfile2D, theta: np.ndarray, z: np.ndarray) -> bo
     return True
 
 
-def _tabulate_lines(profile, annulus: Annulus, n: int, m: int, kappa_g: float, centre: float,
+def _tabulate_lines(profile, annulus: Annulus, n: int, m: int, kappa_g: float, gamma: float, centre: float,
                     z_m: np.ndarray | None):
     """h and the squeeze flux Q at the Gauss points of every line, shape (n_lines, N m).
 
     ``z_m`` holds the lines' positions (m); None for a one-dimensional profile
-    (one line). Q is the antiderivative in psi of a h_dot dtheta/dpsi, to the
-    rule's order 2m (:func:`lubrication.reynolds._antiderivative`); every line
-    must conserve its area.
+    (one line). Q is the antiderivative in psi of a h_dot dtheta/dpsi, taken in
+    the cell coordinate xi to the rule's order 2m
+    (:func:`lubrication.reynolds._antiderivative`); every line must conserve its area.
     """
-    psi = _gauss_points(n, m)
+    psi, _ = _sommerfeld_angle(_gauss_points(n, m), gamma)
     theta = centre + _theta_of_psi(psi, kappa_g).ravel()
     lines = [None] if z_m is None else list(z_m)
     probe = np.linspace(-np.pi, np.pi, 4096, endpoint=False)
@@ -456,10 +556,11 @@ def _tabulate_lines(profile, annulus: Annulus, n: int, m: int, kappa_g: float, c
                    f"its mean is {net / probe.size:g} m/s against a mean magnitude of {size / probe.size:g} m/s")
             raise ValueError(msg)
 
-        def rate(psi_, h_dot=h_dot):
+        def rate(xi, h_dot=h_dot):
+            psi_, stretch = _sommerfeld_angle(xi, gamma)
             th = centre + _theta_of_psi(psi_, kappa_g)
-            return annulus.a * np.asarray(h_dot(th.ravel()), dtype=float).reshape(psi_.shape) * \
-                _jacobian(psi_, kappa_g)
+            return annulus.a * np.asarray(h_dot(th.ravel()), dtype=float).reshape(xi.shape) * \
+                _jacobian(psi_, kappa_g) * stretch
 
         q_out[k] = _antiderivative(rate, n, m).ravel()
     return h_out, q_out
@@ -506,7 +607,7 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
         raise ValueError(msg)
     sealed = ends == "sealed"
     if clustering is not None:
-        clustering = check_range("clustering", clustering, 0.0, 1.0, high_open=False)
+        clustering = _check_clustering(clustering)
     a = annulus.a
     if isinstance(profile, (GapProfile, GapProfile2D)):
         kappa, omk, centre = _profile_scale(profile, annulus)
@@ -518,9 +619,11 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
         msg = f"profile must be one of {', '.join(PROFILES)}, a GapProfile or a GapProfile2D, got {profile!r}"
         raise ValueError(msg)
     if clustering is None:
-        clustering = 1.0 if sealed else default_clustering(kappa, omk)
-    kappa_g, omk_g = grid_parameter(kappa, omk, clustering)
-    rule, nodes = _psi_rule(n, m)
+        clustering = (1.0, 1.0) if sealed else default_clustering(kappa, omk)
+    narrow, wide = clustering
+    kappa_g, omk_g = grid_parameter(kappa, omk, narrow)
+    gamma = grading(kappa, omk, narrow, wide)
+    rule, nodes = _theta_rule(n, m, gamma)
     cell_rule = _cell_rule(m)
     half_length = 0.5 * annulus.length / a
     if end_layer is None:
@@ -533,7 +636,7 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
         z, weights, *modes = _axial_modes(half_length, n_half, layer, sealed)
         h_lines, q_lines = (_NO_LINES, _NO_LINES)
         if kind == _kernels.TABULATED:
-            h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, centre, None)
+            h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, gamma, centre, None)
         return _Setup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
                       z, weights, True, tuple(modes))
     z_half = axial_grid(half_length, n_half, layer)
@@ -541,7 +644,7 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
     half = _is_symmetric(profile, theta_nodes, a * z_half)
     z = z_half if half else np.concatenate((-z_half[:0:-1], z_half))
     weights = _axial_matrices(z)[4]
-    h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, centre, a * z)
+    h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, gamma, centre, a * z)
     return _Setup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
                   z, weights, half, None)
 
@@ -728,11 +831,12 @@ def reynolds2d_forces(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int 
         End-region pressure (Pa); matters only with cavitation.
     cavitation : {"none", "half-sommerfeld"}
         Full film, or the pressure truncated at ``p_cav`` (Pa), open ends only.
-    clustering : float, optional
-        Angular clustering of the theta grid in [0, 1] (module docstring); by
-        default :func:`default_clustering` (1/2 up to kappa ~ 0.9999) with open
-        ends and 1 with sealed ones, whose problem is the one-dimensional one
-        for a z-independent gap.
+    clustering : float or (float, float), optional
+        Exponents (c_n, c_w) of the theta grid's angular scale at the narrow gap
+        and on the wide side, 0 <= c_w <= c_n <= 1 (module docstring); a number c
+        is (c, c). By default :func:`default_clustering` with open ends ((1/2, 1/2)
+        up to kappa = 0.9968, graded beyond) and (1, 1) with sealed ones, whose
+        problem is the one-dimensional one for a z-independent gap.
     points_per_cell : int
         Gauss points per theta cell for the cell integrals.
     end_layer : float, optional
@@ -740,6 +844,7 @@ def reynolds2d_forces(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int 
     extrapolate : bool
         Return the Richardson combination (4 F(n, n_axial) - F(n/2, n_axial/2))/3,
         fourth order, for 1.25 times the cost; ``n`` and ``n_axial/2`` must then be even.
+        Near contact (kappa > 0.9968, the graded grid) it needs n >= 64 (module docstring).
 
     Returns
     -------

@@ -17,6 +17,7 @@ import time
 from importlib.metadata import entry_points, version
 from pathlib import Path
 
+from dynamics.app.folder import FolderError
 from dynamics.app.sweeps.cli import register as _add_sweep
 
 __all__ = ["UsageError", "main"]
@@ -73,8 +74,9 @@ def _add_forces(subparsers) -> None:
                    choices=["closed-form", "reynolds", "stokes-exact", "stokes", "all", "auto"],
                    help="force model (default closed-form): the lubrication forms (2.5)-(2.7), the Reynolds "
                         "solver, the exact 2-D Stokes solution, or Stokes by finite elements (needs the fem "
-                        "extra); all: every model and its differences from the exact Stokes forces; auto: the "
-                        "cheapest whose measured error meets --tolerance")
+                        "extra); all: every model and its differences from the exact Stokes forces (with --ends "
+                        "open: closed-form, reynolds and stokes-exact, all with open ends); auto: the cheapest "
+                        "whose measured error meets --tolerance (infinite length only)")
     p.add_argument("--tolerance", type=_number, default=1e-2,
                    help="auto: largest acceptable relative error of the forces, in (0, 1), default 1e-2")
     p.add_argument("--a", type=_number, required=True, help="inner radius (m)")
@@ -92,21 +94,25 @@ def _add_forces(subparsers) -> None:
                    help=f"axial length (m), default {STEEL_LENGTH:g}")
     p.add_argument("--n", type=int, default=32,
                    help="Reynolds: cells around the gap (default 32; use a few hundred with cavitation)")
-    p.add_argument("--grid", default="sommerfeld", choices=["sommerfeld", "uniform"],
-                   help="Reynolds: grid uniform in the Sommerfeld angle or in theta")
+    p.add_argument("--grid", choices=["sommerfeld", "uniform"],
+                   help="Reynolds with --ends infinite: grid uniform in the Sommerfeld angle (default) or in "
+                        "theta")
     p.add_argument("--ends", default="infinite", choices=["infinite", "open", "sealed"],
-                   help="Reynolds: per unit length of an infinitely long annulus (default), or the gap of "
-                        "--length opening into end regions at both ends (open) or closed there (sealed), "
-                        "solved on (theta, z)")
-    p.add_argument("--n-axial", type=int, default=64,
-                   help="Reynolds with --ends open|sealed: cells along the half length (default 64)")
+                   help="per unit length of an infinitely long annulus times --length (default), or the gap of "
+                        "--length opening into end regions at both ends (open) or closed there (sealed). open: "
+                        "the Reynolds solver on (theta, z), or the closed forms and the exact Stokes forces "
+                        "times the thin-gap finite-length factors; sealed: the Reynolds solver only")
+    p.add_argument("--n-axial", type=int,
+                   help="Reynolds with --ends open|sealed: cells along the whole length, even, half of them "
+                        "from the mid-plane to each end (default 64)")
     p.add_argument("--profile", default="thin", choices=["thin", "eccentric"],
                    help="Reynolds: thin-gap profile (B1) or the exact eccentric gap")
     p.add_argument("--cavitation", default="none", choices=["none", "half-sommerfeld", "swift-stieber", "jfo"],
                    help="Reynolds: cavitation model (default none: full film)")
     p.add_argument("--p-cav", type=_number, default=0.0, help="Reynolds: cavitation pressure (Pa), default 0")
     p.add_argument("--p-ref", type=_number, default=101325.0,
-                   help="Reynolds: pressure at the widest gap (Pa), default 101325")
+                   help="Reynolds: absolute reference pressure (Pa), at the widest gap with --ends infinite, "
+                        "in the end regions with --ends open; default 101325")
     p.add_argument("--n-around", type=int, help="Stokes: cells around the annulus (default by delta/a)")
     p.add_argument("--n-across", type=int, help="Stokes: cells across the gap (default by delta/a)")
     p.add_argument("--flow", metavar="DIR",
@@ -161,19 +167,54 @@ def _check_cavitation_options(args) -> None:
     check_range("--p-cav", args.p_cav, 0.0, args.p_ref, unit=f"Pa (absolute, below --p-ref = {args.p_ref:g} Pa)")
 
 
+def _check_ends_options(args) -> None:
+    """What each model can do with the annulus' ends; a ValueError naming the options otherwise."""
+    if args.ends == "infinite":
+        if args.n_axial is not None:
+            raise ValueError("--n-axial is for the Reynolds solver on (theta, z): it needs --ends open or sealed")
+        return
+    ends = f"--ends {args.ends}"
+    if args.grid is not None:
+        raise ValueError(f"--grid is the one-dimensional Reynolds solver's (--ends infinite); with {ends} the "
+                         "(theta, z) solver grades its own grid (lubrication.reynolds2d)")
+    if args.model == "auto":
+        raise ValueError(f"{ends} with --model auto: the automatic choice rests on errors measured per unit "
+                         "length of an infinitely long annulus; choose --model closed-form, stokes-exact or "
+                         "reynolds")
+    if args.model == "stokes":
+        raise ValueError(f"{ends} with --model stokes: the finite-element Stokes solve is per unit length of an "
+                         "infinitely long annulus; --model stokes-exact takes --ends open (times the "
+                         "finite-length factors)")
+    if args.ends == "sealed" and args.model != "reynolds":
+        raise ValueError(f"{ends} needs --model reynolds: the closed forms and the exact Stokes forces take "
+                         "--ends infinite or open")
+    if args.cavitation in ("swift-stieber", "jfo"):
+        raise ValueError(f"--cavitation {args.cavitation} with {ends}: on (theta, z) only half-sommerfeld "
+                         "carries over; use --ends infinite for this model")
+    if args.cavitation != "none" and args.ends == "sealed":
+        raise ValueError(f"--cavitation {args.cavitation} with {ends}: sealed ends leave the pressure level "
+                         "undetermined; use --ends open (the end regions fix it at --p-ref) or infinite")
+    if args.flow is not None:
+        raise ValueError(f"--flow draws the two-dimensional Stokes flow: it needs --ends infinite, not {ends}")
+
+
 def _run_forces(args) -> int:
+    from dynamics.equations.forces import force_model
     from lubrication import Annulus, Fluid, Motion, fluid_forces
 
     try:
+        _check_ends_options(args)
         annulus = Annulus.from_kappa(args.a, args.b, args.kappa, length=args.length)
         motion = Motion(eps_dot=args.eps_dot, chi_dot=args.chi_dot,
                         omega_a=args.omega_a, omega_b=args.omega_b)
         fluid = Fluid(nu=args.nu, rho=args.rho)
+        # with open ends the (theta, z) solver's reference pressure is that of the end regions
+        reference = "p_ref" if args.ends == "infinite" else "p_end"
         options = {"closed-form": {}, "stokes-exact": {},
                    "reynolds": {"n": args.n, "profile": args.profile,
-                                **({"grid": args.grid} if args.ends == "infinite" else
-                                   {"ends": args.ends, "n_axial": args.n_axial}),
-                                **({"cavitation": args.cavitation, "p_cav": args.p_cav, "p_ref": args.p_ref}
+                                **({"grid": args.grid or "sommerfeld"} if args.ends == "infinite" else
+                                   {"ends": args.ends, "n_axial": 64 if args.n_axial is None else args.n_axial}),
+                                **({"cavitation": args.cavitation, "p_cav": args.p_cav, reference: args.p_ref}
                                    if args.cavitation != "none" else {})},
                    "stokes": {k: v for k, v in (("n_around", args.n_around), ("n_across", args.n_across))
                               if v is not None}}
@@ -181,14 +222,19 @@ def _run_forces(args) -> int:
         if args.model == "auto":
             return _run_auto_forces(args, annulus, motion, fluid)
         models = [args.model] if args.model != "all" else ["closed-form", "reynolds"] + (
-            ["stokes"] if _has_fem() else []) + ["stokes-exact"]
+            ["stokes"] if _has_fem() and args.ends == "infinite" else []) + ["stokes-exact"]
+        evaluators = {m: (lambda m=m: fluid_forces(annulus, motion, fluid, m, **options[m])) for m in models}
+        if args.ends == "open":
+            # the closed forms and the exact Stokes forces times the thin-gap finite-length factors
+            for name in [m for m in models if m in ("closed-form", "stokes-exact")]:
+                scaled = force_model(name, ends="open", length_over_a=annulus.length / annulus.a)
+                evaluators[name] = lambda scaled=scaled: scaled.forces(annulus, motion, fluid)
         results = []
         for model in models:
             # Stokes caches its factorisation: a warm-up call would hide its real cost
-            f, seconds = _timed(lambda m=model: fluid_forces(annulus, motion, fluid, m, **options[m]),
-                                warm_up=model != "stokes")
-            row = {"model": model, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a, "wall_time_s": seconds,
-                   **options[model]}
+            f, seconds = _timed(evaluators[model], warm_up=model != "stokes")
+            row = {"model": model, "ends": args.ends, "f_eps": f.f_eps, "f_chi": f.f_chi, "T_a": f.T_a,
+                   "wall_time_s": seconds, **options[model]}
             results.append((f, row))
         if args.flow is not None and "stokes" not in models:
             raise ValueError("--flow needs the Stokes model (--model stokes or all)")
@@ -249,7 +295,8 @@ def _write_flow(outdir, annulus, motion, fluid, mesh_options) -> None:
 
 def _print_forces_table(annulus, rows) -> None:
     print(f"a = {annulus.a:g} m, b = {annulus.b:g} m, kappa = {annulus.kappa:.12g}, "
-          f"delta/a = {annulus.delta_over_a:.4g}, length = {annulus.length:g} m")
+          f"delta/a = {annulus.delta_over_a:.4g}, length = {annulus.length:g} m, "
+          f"ends {rows[0].get('ends', 'infinite')}")
     print(f"{'model':<12} {'f_eps (N)':>16} {'f_chi (N)':>16} {'T_a (N m)':>16} {'time (s)':>10}")
     for row in rows:
         print(f"{row['model']:<12} {row['f_eps']:>16.9e} {row['f_chi']:>16.9e} {row['T_a']:>16.9e} "
@@ -342,11 +389,13 @@ def _run_scene(args) -> int:
         inertia = trajectory.info.get("inertia", {})
         if inertia.get("max_estimated_force_error", 0.0) > WARN_FORCE_ERROR:
             print(f"snail run: warning: fluid inertia: the quasi-steady Stokes forces may be in error by up to "
-                  f"{inertia['max_estimated_force_error']:.0%} (reduced gap Reynolds number up to "
-                  f"{inertia['max_reduced_reynolds']:.2g} at t = {inertia['t_at_max_reduced_reynolds']:.3g} s); "
-                  "see summary.json 'inertia'", file=sys.stderr)
+                  f"{inertia['max_estimated_force_error']:.0%} (at t = {inertia['t_at_max_estimated_force_error']:.3g} "
+                  f"s; at the largest gap Reynolds number, Re* = {inertia['max_reduced_reynolds']:.2g} at "
+                  f"t = {inertia['t_at_max_reduced_reynolds']:.3g} s, by "
+                  f"{inertia['estimated_force_error_at_max_reduced_reynolds']:.0%}); see summary.json 'inertia'",
+                  file=sys.stderr)
         info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
-                             plot=not args.no_plot)
+                             plot=not args.no_plot, max_rows=scene.run.max_rows)
     finally:
         folder.__exit__(None, None, None)
     if args.json:
@@ -376,7 +425,7 @@ def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.run(args)
-    except UsageError as err:
+    except (UsageError, FolderError) as err:
         print(f"snail {args.command}: error: {err}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
