@@ -450,8 +450,11 @@ def cavitating_film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b
 
     The arguments up to ``sin_c`` are those of :func:`lubrication._kernels.film_forces`.
     ``p_out`` (Pa, absolute), ``film_out`` and ``r_out`` (m^2/s per unit length,
-    :func:`balance`) have shape (N,). Raises RuntimeError if the active set does not settle,
-    so that a jitted caller (the equations of motion) stops with the reason too.
+    :func:`balance`) have shape (N,). If the active set does not settle, the forces are NaN and
+    the passes negative: an exception raised here would be lost in a compiled caller that holds
+    this function as a value (the integrator's right-hand side), while a NaN makes the
+    integrator shorten its step, or stop saying that the forces were not finite. The Python
+    face (:func:`lubrication.cavitation.cavitating_forces`) raises with the reason.
     """
     n = spsi.size // m
     u_a = a * w_a
@@ -465,8 +468,7 @@ def cavitating_film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b
     i_sin, i_chi, i_torque, passes = cavitating_film(integrals, u_a, u_b, model, y_cav, 2 * n + 16,
                                                      y, film_out, r_out)
     if passes < 0:
-        raise RuntimeError("the cavitation active set did not settle (2 N + 16 passes per grid level, "
-                           "then a continuation in the squeeze down to steps of 1/4096)")
+        return np.nan, np.nan, np.nan, passes
     for j in range(n):
         # a cavitated node holds p_cav exactly, not p_ref + (p_cav - p_ref) rounded
         p_out[j] = p_cav if (model != NONE and y[j] <= y_cav) else p_ref + scale_p * y[j]

@@ -188,6 +188,10 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, model: str, p_cav: fl
         motion.w_a, motion.w_b, kappa_g, omk_g, *rule, points_per_cell,
         h_tab, q_tab, math.cos(centre), math.sin(centre), CAVITATION_MODELS.index(model),
         p_cav, p_ref, p, film, residual)
+    if passes < 0:
+        msg = ("the cavitation active set did not settle (2 N + 16 passes per grid level, then a continuation "
+               "in the squeeze down to steps of 1/4096)")
+        raise RuntimeError(msg)
     theta = centre + _theta_of_psi(nodes, kappa_g)
     return CavitatingPressure(theta, p, film, residual, FluidForces(*f, model=f"reynolds/{model}"), passes)
 
