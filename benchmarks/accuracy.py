@@ -567,6 +567,7 @@ def main(argv=None) -> None:
                         help="re-derive the errors and republish from results/accuracy.json, without running")
     args = parser.parse_args(argv)
     results = (rederive(json.loads((RESULTS / "accuracy.json").read_text())) if args.from_json else run())
+    write_text(RESULTS / "accuracy.json", json.dumps(results, indent=1) + "\n")  # first: ten minutes of numbers
     choice = model_choice(results)
     write_text(CHOICE_FILE, json.dumps(choice, indent=None, separators=(",", ":")) + "\n")
     fig = pareto_figure(results, choice)

@@ -34,10 +34,9 @@ from lubrication.geometry import check_range
 
 __all__ = ["Choice", "choose_equations", "choose_forces", "near_contact_kappa", "resolve_model", "study"]
 
-#: Force models of the study and the name the equations of motion know them by
-#: (:func:`dynamics.equations.forces.force_model`).
-_ADAPTER = {"closed-form": "closed-form", "reynolds": "reynolds", "stokes-table": "stokes-exact"}
-_STUDY_KEY = {"closed-form": "closed-form", "stokes-exact": "stokes"}
+#: Force models of the study that the equations of motion can call, and the name its trajectories
+#: were run under (the study's "stokes" runs use the exact Stokes forces).
+_TRAJECTORY_KEY = {"closed-form": "closed-form", "reynolds": "reynolds", "stokes-exact": "stokes"}
 
 
 @dataclass(frozen=True)
@@ -150,8 +149,8 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
         ``model`` is a :mod:`dynamics.equations.forces` name. Cost is the measured
         time of one evaluation from jitted code, the largest over the band.
         Candidates are the models a right-hand side can call: closed forms,
-        Reynolds, and the Stokes table with its default (cached) settings; the
-        finite-element solve itself is far too slow for that.
+        Reynolds and the exact Stokes solution; the finite-element solve is
+        far too slow for that.
     """
     tolerance, delta_over_a = _check(tolerance, delta_over_a)
     kappa_max = check_range("kappa_max", kappa_max, 0.0, 1.0)
@@ -164,7 +163,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
         last = len(data["deltas"]) - 1
         best = min(candidates, key=lambda e: max(e["error"][last][k] for k in band))
         error = max(best["error"][last][k] for k in band)
-        return Choice(_ADAPTER[best["model"]], _adapter_options(best), error,
+        return Choice(best["model"], _adapter_options(best), error,
                       max(best["jit_s"][last][k] for k in band),
                       f"delta/a = {delta_over_a:g} is beyond the study (largest {data['deltas'][-1]:g}), so "
                       f"the most accurate measured model there, {_label(best['model'], best['options'])} "
@@ -175,7 +174,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
     measured = []
     for e in candidates:
         error = max(e["error"][r][k] for r in rows for k in band)
-        runs = [along.get(_ADAPTER[e["model"]], [None] * (max(eq_rows, default=0) + 1))[r] for r in eq_rows]
+        runs = [along.get(_TRAJECTORY_KEY[e["model"]], [None] * (max(eq_rows, default=0) + 1))[r] for r in eq_rows]
         error = max([error] + [x for x in runs if x is not None])
         cost = max(e["jit_s"][r][k] for r in rows for k in band)
         measured.append((e, error, cost))
@@ -190,7 +189,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
         e, error, cost = min(measured, key=lambda m: m[1])
         reason = (f"no force model meets the tolerance {tolerance:g} at {where}, {kappa_phrase}; "
                   f"{_label(e['model'], e['options'])} is the most accurate measured, error {error:.1e}")
-    return Choice(_ADAPTER[e["model"]], _adapter_options(e), error, cost, reason)
+    return Choice(e["model"], _adapter_options(e), error, cost, reason)
 
 
 def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto") -> Choice:
@@ -217,7 +216,7 @@ def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto"
         raise ValueError(msg)
     eq = study()["equations"]
     # the study's rows for the full equations are keyed by the force model they were run with
-    full_forces = _STUDY_KEY.get("stokes-exact" if forces == "auto" else "closed-form")
+    full_forces = _TRAJECTORY_KEY["stokes-exact" if forces == "auto" else "closed-form"]
     rows, where = _bracket(delta_over_a, eq["deltas"])
     if not rows:
         last = len(eq["deltas"]) - 1
