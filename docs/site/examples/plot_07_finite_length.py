@@ -21,7 +21,7 @@ apparatus' length, and a trajectory of the default scene is run with both ends.
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dynamics import Initial, preset
+from dynamics import Initial, Limits, preset
 from dynamics.equations.forces import force_model
 from dynamics.simulation import simulate
 from lubrication.finite_length import (
@@ -65,7 +65,7 @@ for k, d in zip(check, direct):
 # forces per unit length against the same forces with open ends. The ends
 # weaken the squeeze film, so the inner cylinder reaches the wall sooner.
 steel = preset("steel", nu=2e-4)
-runs = {ends: simulate(steel, Initial(kappa=0.5, phi=0.5), 10.0,
+runs = {ends: simulate(steel, Initial(kappa=0.5, phi=0.5), 10.0, limits=Limits(on_invalid="warn"),
                        forces=force_model("closed-form", ends=ends, length_over_a=steel.length / steel.a))
         for ends in ("infinite", "open")}
 fig2, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained")
