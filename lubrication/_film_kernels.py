@@ -11,7 +11,11 @@ import math
 
 import numpy as np
 
-from ._cavitation_kernels import _cell_coefficients, _film_integrals, half_sommerfeld_weights
+from ._cavitation_kernels import (
+    _cell_coefficients,
+    _film_integrals,
+    half_sommerfeld_weights,
+)
 from ._jit import jit
 from ._kernels import N_INTEGRALS, THIN, cell_integrals
 
@@ -202,7 +206,7 @@ def film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wps
     ``conv[j]`` receives the content carried across face j (from node j to j+1, relative to
     the moving face) by the walls and by the squeeze and grid motion, each part at the film
     fraction of its upwind node; ``film`` the film fraction F_j = 1 - void_j/V_j.
-    Returns (g, k, half_u): conductances, Couette fluxes of the cells and (U_a + U_b)/2.
+    Returns (g, half_u): the cells' conductances and (U_a + U_b)/2.
     """
     n = void.size
     integrals[:, :] = 0.0
@@ -218,13 +222,13 @@ def film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wps
         jp = j + 1 if j < n - 1 else 0
         squeeze = q_mean[j] - qtilde[j]
         conv[j] = (film[j] if half_u >= 0.0 else film[jp]) * k[j] + (film[j] if squeeze >= 0.0 else film[jp]) * squeeze
-    return g, k, half_u
+    return g, half_u
 
 
 @jit
 def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m,
                faces, node_p, gauge, p_cav, p_ref, bubble_volume, end_conductance, relaxation,
-               void, reservoir, d_void, y, film):
+               void, reservoir, d_void, y, film, flux):
     """Rates of the film's state, its pressure and the force and torque it exerts.
 
     Parameters
@@ -250,8 +254,9 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
         The state: gas volume of each dual cell per unit length, V_j - M_j (m^2).
     reservoir : float
         The state: liquid the reservoir has taken from the film per unit length (m^2).
-    d_void, y, film : ndarray, shape (N,)
-        Receive dvoid/dt, y = (p - p_ref)/(12 mu a) (from p_res with the bubble) and the film fraction.
+    d_void, y, film, flux : ndarray, shape (N,)
+        Receive dvoid/dt, y = (p - p_res)/(12 mu a), the film fraction and the liquid
+        carried across face j from node j to j+1, relative to the moving face (m^2/s).
 
     Returns
     -------
@@ -259,13 +264,15 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
         Force (N) and torque (N m) over the length.
     d_reservoir : float
         d(reservoir)/dt (m^2/s).
+    p_res : float
+        The pressure y is measured from (Pa): ``p_ref`` at a feed, the bubble's with the end reservoirs.
     passes : int
         Active-set passes; -1 (and NaN everywhere) if the problem could not be solved.
     """
     n = void.size
     integrals = np.empty((n, N_INTEGRALS))
     volume, vdot, dtheta, h_node, conv = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    g, k, half_u = film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces,
+    g, half_u = film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces,
                                node_p, void, integrals, volume, vdot, dtheta, h_node, film, conv)
     scale_p = 12.0 * mu * a
     lam = np.zeros(n)
@@ -290,9 +297,9 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
     passes = complementarity(g, lam, b, state, 0.0, y_cav, y, True, n + 16) if np.isfinite(y_cav) else -1
     if passes < 0:
         d_void[:] = np.nan
-        return np.nan, np.nan, np.nan, np.nan, passes
+        flux[:] = np.nan
+        return np.nan, np.nan, np.nan, np.nan, p_res, passes
     # content fluxes through the faces, and each dual cell's balance
-    flux = np.empty(n)
     for j in range(n):
         jp = j + 1 if j < n - 1 else 0
         flux[j] = conv[j] - g[j] * (y[jp] - y[j])
@@ -315,7 +322,7 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
         shear_film[j] = min(max(film[j], 0.0), 1.0)
     i_sin, i_chi, i_torque = _film_integrals(integrals, half_u, a * w_a, a * w_b, y, weight, shear_film)
     scale = scale_p * a * length
-    return scale * i_sin, scale * i_chi, mu * a * a * length * i_torque, d_reservoir, passes
+    return scale * i_sin, scale * i_chi, mu * a * a * length * i_torque, d_reservoir, p_res, passes
 
 
 @jit
@@ -331,7 +338,7 @@ def leaky_truncated_forces(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi
     integrals = np.empty((n, N_INTEGRALS))
     volume, vdot, dtheta, h_node, conv, film = (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
                                                 np.empty(n))
-    g, k, half_u = film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces,
+    g, half_u = film_fluxes(a, b, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces,
                                node_p, np.zeros(n), integrals, volume, vdot, dtheta, h_node, film, conv)
     lam = np.empty(n)
     b = np.empty(n)

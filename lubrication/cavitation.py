@@ -72,8 +72,9 @@ one constant). The models change it as follows; node 0 is the feed, phi_0 fixed.
 Forces use the by-parts integrals of :mod:`lubrication._kernels` cell by cell: a
 cell that is not cavitated at both ends carries the full-film pressure through
 its nodal values (flux constant c_j = ((U/2) A_j + B_j - (phi_{j+1} - phi_j))/G_j),
-a cavitated cell carries p_cav; the JFO Couette shear is weighted by the cell's
-mean film fraction.
+a cavitated cell carries p_cav; the JFO Couette shear is weighted by the film
+fraction upwind of the cell (second order on any grid; the cell mean was first order on
+the grid uniform in theta).
 
 The solver
 ----------

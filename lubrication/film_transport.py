@@ -82,8 +82,9 @@ Radau IIA integrator takes with a finite-difference Jacobian. The void, not
 the content, is the state so that a pressed node sits at v = 0 whatever the
 gap does, and the stiff relaxation does not turn a perturbation of the
 geometry into a switch. tau_r must be far below the time the walls take to
-carry liquid across a cell; its effect is O(tau_r) (measured in
-``validation.cavitation_transient``).
+carry liquid across a cell; its effect is O(tau_r) (:mod:`validation.cavitation_transient`:
+tau_r = 1e-6 s against 1e-7 s moves the gap history of the steel apparatus'
+release by 8e-5 of 1 - kappa).
 
 The gauge
 ---------
@@ -101,14 +102,15 @@ Every cell exchanges liquid with them through the ends,
 
     e_j = lam_j (x_j - x_res),   lam_j = eps_end h_j^3 dtheta_j,
 
-the Poiseuille flux through the end layers: a film of length L whose pressure
+the Poiseuille flux through the end layers, taken full also beside a cavity (whose
+pressure, p_cav < p_res, then draws liquid in from the ends): a film of length L whose pressure
 relaxes to p_res over an axial length ell near each end leaks 2 h^3 (p - p_res)/(12 mu ell)
 per unit arc, that is (2 a^2/(L ell)) h^3 (phi - phi_res) per radian and unit length,
 eps_end = 2a/L for the long bearing's ell = a. The value
 taken, eps_end = 1/F_0 - 1 with F_0 = 1 - tanh(l/2)/(l/2) (l = L/a) the exact
 finite-length factor at kappa -> 0 (:func:`lubrication.finite_length.small_eccentricity_factor`),
 makes the forces of a full film at small kappa exactly those of the annulus of
-length L with open ends (0.1832 for the apparatus; 2a/L = 0.155 is its long-bearing
+length L with open ends (0.1829 for the apparatus; 2a/L = 0.155 is its long-bearing
 limit). Liquid the reservoirs take compresses the bubble: its volume is
 V_b = volume - L R and, isothermally, p_res = pressure volume / V_b (not below
 p_cav: the reservoir cavitates rather than hold tension). The reference is then a
@@ -116,15 +118,29 @@ weighted mean of the pressure, not its extreme, and approach and separation are
 treated alike: a film cavitates where its pressure falls p_res - p_cav below that
 mean, on either side, and only as fast as the ends let liquid go (a cavity in a
 closed, incompressible film needs its volume of liquid to leave the gap). The
-total oil, L (sum_j M_j + R), is conserved exactly; at kappa > 0 the ends lower
-the forces of the full film as a finite length does, by 8-15% here.
+total oil, L (sum_j M_j + R), is conserved exactly. The end layer is the one of
+kappa -> 0 at every kappa, so this is a model of the finite length, exact in that
+limit only: for the apparatus (N = 128) it lowers the full film's f_eps and f_chi by
+15% at small kappa, by 9% and 12% at kappa = 0.5 and by 2% and 6% at kappa = 0.9,
+within 3% of the finite-length factors of :mod:`lubrication.finite_length` (0.886 and
+0.865 at 0.5, 0.954 and 0.917 at 0.9).
+
+The bubble is what the film's cavities compress: a cavity of sum_j v_j per unit
+length raises p_res by about pressure L sum_j v_j / volume (1% of an atmosphere for
+1e-8 m^3 in 1 cm^3), while p_cav stays where it is. With a margin p_res - p_cav of a
+few Pa it is therefore the bubble's compression, not the margin, that sets where the
+film ruptures (the release of :mod:`validation.cavitation_transient` ends with
+p_res - p_cav near 900 Pa after starting at 3 Pa).
 
 Forces
 ------
 The by-parts integrals of :mod:`lubrication._kernels` cell by cell, as in
 :mod:`lubrication.cavitation`: a cell at p_cav at both ends carries p_cav, the
 others the full-film profile through their nodal pressures; the Couette shear is
-weighted by the cell's mean film fraction.
+weighted by the cell's mean film fraction. On the Sommerfeld grid every cell has
+the same int h^-1 dtheta = dpsi/(delta zeta), so this torque equals, to rounding,
+the one weighted by the upwind node's fraction, the fraction of the liquid the
+cell carries.
 
 Limits: the thin gap only; first order where F varies (upwind), second order
 at the cavity boundaries, as the steady solver.
@@ -274,8 +290,13 @@ class FilmRates:
         V_j, the gap area of each dual cell per unit length (m^2).
     d_void : ndarray, shape (N,)
         dvoid_j/dt (m^2/s).
+    flux : ndarray, shape (N,)
+        Liquid carried across face j, from node j to node j+1, relative to the moving
+        face (m^2/s per unit length): qbar_j of the module docstring.
     d_reservoir : float
         Liquid the reservoir takes from the film per unit time and length (m^2/s).
+    reservoir_pressure : float
+        The pressure the film is measured from (Pa): the feed's p_ref, or the bubble's.
     forces : FluidForces
     passes : int
         Active-set passes of the complementarity problem.
@@ -286,7 +307,9 @@ class FilmRates:
     film_fraction: np.ndarray
     area: np.ndarray
     d_void: np.ndarray
+    flux: np.ndarray
     d_reservoir: float
+    reservoir_pressure: float
     forces: FluidForces
     passes: int
 
@@ -315,27 +338,31 @@ def film_rates(annulus: Annulus, motion: Motion, fluid: Fluid, film: Transported
         volume, per unit length (m^2).
     """
     n = film.n
+    area = dual_areas(annulus, n)
     void = np.zeros(n) if void is None else np.array(void, dtype=float)
     if void.shape != (n,) or not np.all(np.isfinite(void)):
         msg = f"void must be a finite array of shape ({n},), got shape {void.shape}"
         raise ValueError(msg)
-    d_void, y, fraction = np.empty(n), np.empty(n), np.empty(n)
-    *f, d_reservoir, passes = _fk.film_rates(
+    if np.any(void > area):
+        msg = "void must not exceed the gap area V_j of its cell (the liquid in a cell cannot be negative)"
+        raise ValueError(msg)
+    reservoir = check_finite("reservoir", reservoir)
+    d_void, y, fraction, flux = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    *f, d_reservoir, p_res, passes = _fk.film_rates(
         annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa, annulus.one_minus_kappa, motion.eps_dot,
-        motion.w_a, motion.w_b, *film.kernel_data(annulus.a, annulus.length), void, float(reservoir), d_void, y,
-        fraction)
+        motion.w_a, motion.w_b, *film.kernel_data(annulus.a, annulus.length), void, reservoir, d_void, y,
+        fraction, flux)
     if passes < 0:
         msg = "the film's complementarity problem could not be solved (a bubble squeezed to nothing?)"
         raise RuntimeError(msg)
     _, nodes = _psi_rule(n, film.points_per_cell)
     theta = _theta_of_psi(nodes, annulus.kappa)
     theta[0] = np.pi
-    scale = 12.0 * fluid.mu * annulus.a
-    p_res = film.reservoir_pressure(annulus.length, reservoir)
-    # a cavitated node holds p_cav exactly (the kernel sets it to the level, not near it)
-    p = np.where(y == (film.p_cav - p_res) / scale, film.p_cav, p_res + scale * y)
-    return FilmRates(theta, p, fraction, dual_areas(annulus, n), d_void, d_reservoir,
-                     FluidForces(*f, model=film.name), passes)
+    y_cav = (film.p_cav - p_res) / (12.0 * fluid.mu * annulus.a)
+    # a cavitated node holds p_cav exactly (the kernel sets y to the level itself, not near it)
+    p = np.where(y == y_cav, film.p_cav, p_res + 12.0 * fluid.mu * annulus.a * y)
+    return FilmRates(theta, p, fraction, area, d_void, flux, d_reservoir, p_res, FluidForces(*f, model=film.name),
+                     passes)
 
 
 def leaky_half_sommerfeld_forces(annulus: Annulus, motion: Motion, fluid: Fluid, *, p_cav: float = 0.0,

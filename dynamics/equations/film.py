@@ -9,8 +9,9 @@ the frame force, the responses to a force and to gravity) with the film's rates
 and forces, and the film's liquid changes exactly by what the reservoir takes,
 sum_j (V_j - v_j) + R = const (the gap area sum_j V_j = 2 pi a delta of the thin
 gap does not depend on kappa), a linear invariant of the state that Radau IIA
-keeps to rounding. The stops are those of the full model (:func:`dynamics.equations.full.events`,
-which reads only the first seven components).
+keeps to rounding; :func:`mass_balance` measures it against the liquid that
+crossed the cells' faces along a run. The stops are those of the full model
+(:func:`dynamics.equations.full.events`, which reads only the first seven components).
 
 The film's right-hand side is Lipschitz and piecewise smooth (a node's switch
 between cavitated and pressed is a kink), and stiff: the relaxation of a pressed
@@ -20,7 +21,7 @@ is a fixed tiny area, so that a probe of a pressed node (v = 0) stays on the
 smooth side of its switch.
 
 :func:`rock` drives the film alone through a prescribed motion, kappa = kappa0 +
-A sin(omega t) at fixed spins: the tests' and the validation's rocking film.
+A sin(omega t) at fixed spins: the tests' rocking film.
 """
 
 from __future__ import annotations
@@ -38,13 +39,13 @@ from dynamics.equations.full import _A, _B, _LEN, _MU
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.integrate import integrate
-from lubrication._film_kernels import film_rates
+from lubrication._film_kernels import film_rates as film_kernel
 from lubrication._jit import jit
-from lubrication.film_transport import TransportedFilm, dual_areas
-from lubrication.geometry import Annulus, Fluid, check_range
+from lubrication.film_transport import TransportedFilm, dual_areas, film_rates
+from lubrication.geometry import Annulus, Fluid, Motion, check_finite, check_range
 
-__all__ = ["Rocking", "initial_state", "jacobian", "rhs", "rock", "rocking_jacobian", "rocking_rhs", "run_args",
-           "simulate_film", "void_scale"]
+__all__ = ["MassBalance", "Rocking", "initial_state", "jacobian", "mass_balance", "rhs", "rock", "rocking_jacobian",
+           "rocking_rhs", "run_args", "simulate_film", "void_scale"]
 
 #: A void's finite-difference step and absolute-tolerance floor, as a fraction of a mean dual cell's area:
 #: small enough that a probe of a pressed node does not cross its switch (module docstring).
@@ -52,11 +53,17 @@ VOID_FLOOR = 1e-6
 
 
 @jit(inline="always")
-def _film(film, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, void, reservoir, d_void, y, fraction):
-    """:func:`lubrication._film_kernels.film_rates` with the model's data as one tuple."""
+def _film(film, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, void, reservoir, d_void):
+    """:func:`lubrication._film_kernels.film_rates` with the model's data as one tuple; d_void receives dvoid/dt.
+
+    Returns f_eps, f_chi, T_a and dR/dt.
+    """
     cpsi, spsi, vpsi, ppsi, wpsi, m, faces, node_p, gauge, p_cav, p_ref, bubble, eps_end, relaxation = film
-    return film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces,
-                      node_p, gauge, p_cav, p_ref, bubble, eps_end, relaxation, void, reservoir, d_void, y, fraction)
+    n = void.size
+    f_eps, f_chi, t_a, d_reservoir, _, _ = film_kernel(
+        a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi, ppsi, wpsi, m, faces, node_p, gauge, p_cav,
+        p_ref, bubble, eps_end, relaxation, void, reservoir, d_void, np.empty(n), np.empty(n), np.empty(n))
+    return f_eps, f_chi, t_a, d_reservoir
 
 
 @jit
@@ -71,11 +78,9 @@ def rhs(t, y, args):
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
     n = y.size - 8
     dy = np.empty(y.size)
-    pressure, fraction = np.empty(n), np.empty(n)
-    f_eps, f_chi, t_a, d_reservoir, _ = _film(film, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
-                                              omega_b - chi_dot, y[7:7 + n], y[7 + n], dy[7:7 + n], pressure,
-                                              fraction)
-    frame_eps, frame_chi = full.frame_force(p, eps, eps_dot, chi_dot)
+    f_eps, f_chi, t_a, d_reservoir = _film(film, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
+                                           omega_b - chi_dot, y[7:7 + n], y[7 + n], dy[7:7 + n])
+    frame_eps, frame_chi = full.frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
     fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
     gravity = full.gravity_response(p)
     scale = 1.0 / (delta * zeta)
@@ -147,14 +152,19 @@ def simulate_film(apparatus: Apparatus, initial: Initial, t_end: float, film: Tr
     """Integrate the full model with the transported film; as :func:`dynamics.simulation.simulate`.
 
     Returns a :class:`dynamics.simulation.Trajectory` whose columns add, per row,
-    ``cavity_area`` (the film's gas area per unit length, m^2), ``cavitated_fraction``
-    (share of the nodes not full), ``reservoir`` (R, m^2) and ``reservoir_pressure`` (Pa);
-    ``info["void"]`` holds the voids (N, rows).
+    ``liquid`` (the film's liquid per unit length, sum_j (V_j - v_j), m^2), ``cavity_area``
+    (its gas, sum_j v_j, m^2), ``cavitated_fraction`` (share of the nodes holding gas),
+    ``reservoir`` (R, m^2) and ``reservoir_pressure`` (Pa); ``info["void"]`` holds the
+    voids (N, rows) and ``info["film"]`` the model. :func:`mass_balance` checks the
+    film's liquid against what crossed its faces.
     """
     from dynamics.simulation import _Run
 
     if not isinstance(film, TransportedFilm):
         msg = f"film must be a TransportedFilm, got {type(film).__name__}"
+        raise TypeError(msg)
+    if not isinstance(initial, Initial):
+        msg = f"initial must be an Initial, got {type(initial).__name__}"
         raise TypeError(msg)
     t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True, unit="s")
     run = _Run(apparatus, False, t_end, limits, method, rtol, None if t_eval is None else np.asarray(t_eval, float),
@@ -181,14 +191,73 @@ def simulate_film(apparatus: Apparatus, initial: Initial, t_end: float, film: Tr
     keep = run._keep(fields)
     void = result.y[7:7 + film.n, keep]
     reservoir = result.y[7 + film.n, keep]
-    areas = np.array([dual_areas(Annulus(apparatus.a, apparatus.b, length=apparatus.length, one_minus_kappa=omk), film.n)
-                      for omk in obs["one_minus_kappa"][keep]]).T
-    trajectory.columns.update(cavity_area=void.sum(axis=0),
+    areas = _areas(apparatus, film.n, obs["one_minus_kappa"][keep])
+    # a filled node's void decays as exp(-t/tau_r) rather than vanishing: count the nodes whose gas is more
+    # than a rounding-level share of their cell as holding gas
+    trajectory.columns.update(liquid=np.sum(areas - void, axis=0), cavity_area=void.sum(axis=0),
                               cavitated_fraction=np.mean(void > 1e-9 * areas, axis=0),
                               reservoir=reservoir,
                               reservoir_pressure=film.reservoir_pressure(apparatus.length, reservoir))
     trajectory.info.update(void=void, film=film)
     return trajectory
+
+
+def _areas(annulus_or_apparatus, n: int, one_minus_kappa) -> np.ndarray:
+    """V_j at each of the gaps ``one_minus_kappa``: shape (N, rows)."""
+    ap = annulus_or_apparatus
+    return np.array([dual_areas(Annulus(ap.a, ap.b, length=ap.length, one_minus_kappa=float(omk)), n)
+                     for omk in one_minus_kappa]).reshape(-1, n).T
+
+
+@dataclass(frozen=True)
+class MassBalance:
+    """The film's liquid along a run against the liquid that crossed its faces.
+
+    Attributes
+    ----------
+    content : ndarray, shape (k,)
+        sum_j (V_j - v_j) + R at the output rows: the film's liquid and what the
+        reservoir took from it, per unit length (m^2); constant in exact arithmetic.
+    turnover : float
+        int sum_j |qbar_j| dt, the liquid that crossed the faces (and, where the
+        feed or the ends exchange it, the exchange), by the trapezoidal rule over the
+        output rows (m^2 per unit length).
+    """
+
+    content: np.ndarray
+    turnover: float
+
+    @property
+    def residual(self) -> float:
+        """max_t |content(t) - content(0)| / turnover."""
+        return float(np.max(np.abs(self.content - self.content[0])) / self.turnover)
+
+
+def _mass_balance(annulus: Annulus, fluid: Fluid, film: TransportedFilm, t, one_minus_kappa, motions, void,
+                  reservoir) -> MassBalance:
+    """:class:`MassBalance` from the rows of a run: gaps, (eps', W_a, W_b) per row, voids (N, rows), R."""
+    areas = _areas(annulus, film.n, one_minus_kappa)
+    gross = np.empty(t.size)
+    for k in range(t.size):
+        row = Annulus(annulus.a, annulus.b, length=annulus.length, one_minus_kappa=float(one_minus_kappa[k]))
+        eps_dot, w_a, w_b = motions[k]
+        # an emptied cell's void may pass its area by rounding
+        rates = film_rates(row, Motion(eps_dot=eps_dot, omega_a=w_a, omega_b=w_b), fluid, film,
+                           void=np.minimum(void[:, k], areas[:, k]), reservoir=reservoir[k])
+        gross[k] = np.sum(np.abs(rates.flux)) + abs(rates.d_reservoir)
+    turnover = float(np.sum(0.5 * (gross[1:] + gross[:-1]) * np.diff(t)))
+    return MassBalance(np.sum(areas - void, axis=0) + reservoir, turnover)
+
+
+def mass_balance(apparatus: Apparatus, trajectory) -> MassBalance:
+    """The film's mass balance along a run of :func:`simulate_film`."""
+    film, void = trajectory.info["film"], trajectory.info["void"]
+    c = trajectory.columns
+    motions = np.column_stack((apparatus.delta * c["kappa_dot"], c["omega_a"] - c["phi_dot"],
+                               c["omega_b"] - c["phi_dot"]))
+    annulus = Annulus(apparatus.a, apparatus.b, length=apparatus.length, one_minus_kappa=0.5)
+    return _mass_balance(annulus, Fluid(nu=apparatus.nu, rho=apparatus.rho), film, c["t"], c["one_minus_kappa"],
+                         motions, void, c["reservoir"])
 
 
 # -- the film alone, through a prescribed rocking ---------------------------------------------
@@ -207,10 +276,8 @@ def rocking_rhs(t, y, args):
     eps_dot = (b - a) * k[_AMPLITUDE] * k[_OMEGA] * math.cos(phase)
     n = y.size - 1
     dy = np.empty(y.size)
-    pressure, fraction = np.empty(n), np.empty(n)
-    rates = _film(args[1], a, b, k[_RMU], k[_RLEN], kappa, 1.0 - kappa, eps_dot, k[_WA], k[_WB], y[:n], y[n],
-                  dy[:n], pressure, fraction)
-    dy[n] = rates[3]
+    dy[n] = _film(args[1], a, b, k[_RMU], k[_RLEN], kappa, 1.0 - kappa, eps_dot, k[_WA], k[_WB], y[:n], y[n],
+                  dy[:n])[3]
     return dy
 
 
@@ -240,6 +307,8 @@ class Rocking:
         Liquid the reservoir has taken from the film per unit length (m^2).
     area : ndarray, shape (N, k)
         Gap area V_j of each dual cell (m^2).
+    balance : MassBalance
+        The film's liquid against what crossed its faces, over the output rows.
     steps, nfev, njev : int
     message : str
     """
@@ -249,6 +318,7 @@ class Rocking:
     void: np.ndarray
     reservoir: np.ndarray
     area: np.ndarray
+    balance: MassBalance
     steps: int
     nfev: int
     njev: int
@@ -265,18 +335,28 @@ def rock(annulus: Annulus, fluid: Fluid, film: TransportedFilm, *, amplitude: fl
     """The film from ``void0`` (None: full) under kappa = annulus.kappa + amplitude sin(omega t).
 
     ``w_a``, ``w_b`` are the spins relative to the line of centres (rad/s), which does
-    not turn; ``annulus.length`` is the film's length.
+    not turn; ``annulus.length`` is the film's length. ``void0`` (m^2 per cell) must
+    lie in [0, V_j] at kappa = annulus.kappa.
     """
     kappa0 = annulus.kappa
+    amplitude, omega = check_finite("amplitude", amplitude), check_finite("omega", omega)
+    w_a, w_b = check_finite("w_a", w_a), check_finite("w_b", w_b)
     if not (0.0 <= kappa0 - abs(amplitude) and kappa0 + abs(amplitude) < 1.0):
         msg = f"kappa0 +- amplitude must stay in [0, 1), got kappa0 = {kappa0:g} and amplitude = {amplitude:g}"
         raise ValueError(msg)
+    t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True, unit="s")
     n = film.n
+    area0 = dual_areas(annulus, n)
+    y0 = np.zeros(n + 1)
+    if void0 is not None:
+        y0[:n] = np.asarray(void0, dtype=float)
+        if np.shape(void0) != (n,) or not np.all((y0[:n] >= 0.0) & (y0[:n] <= area0)):
+            msg = f"void0 must have shape ({n},) and lie in [0, V_j] (the gap area of each cell)"
+            raise ValueError(msg)
     motion = np.array([annulus.a, annulus.b, fluid.mu, annulus.length, kappa0, amplitude, omega, w_a, w_b],
                       dtype=float)
     typical = np.full(n + 1, void_scale(annulus, n))
     args = (motion, film.kernel_data(annulus.a, annulus.length), typical)
-    y0 = np.concatenate((np.zeros(n) if void0 is None else np.asarray(void0, dtype=float), [0.0]))
     result = integrate(rocking_rhs, rocking_jacobian, (0.0, t_end), y0, args=args, method=method, rtol=rtol,
                        atol=rtol * typical, events=_no_events, t_eval=t_eval)
     if not result.success:
@@ -284,7 +364,9 @@ def rock(annulus: Annulus, fluid: Fluid, film: TransportedFilm, *, amplitude: fl
     rows = (result.kind & EVENT) == 0
     t = result.t[rows]
     kappa = kappa0 + amplitude * np.sin(omega * t)
-    areas = np.array([dual_areas(Annulus(annulus.a, annulus.b, length=annulus.length, one_minus_kappa=1.0 - k), n)
-                      for k in kappa]).T
-    return Rocking(t, kappa, result.y[:n, rows], result.y[n, rows], areas, result.steps, result.nfev, result.njev,
-                   result.message)
+    eps_dot = (annulus.b - annulus.a) * amplitude * omega * np.cos(omega * t)
+    void, reservoir = result.y[:n, rows], result.y[n, rows]
+    motions = np.column_stack((eps_dot, np.full(t.size, w_a), np.full(t.size, w_b)))
+    balance = _mass_balance(annulus, fluid, film, t, 1.0 - kappa, motions, void, reservoir)
+    return Rocking(t, kappa, void, reservoir, _areas(annulus, n, 1.0 - kappa), balance, result.steps, result.nfev,
+                   result.njev, result.message)
