@@ -9,14 +9,17 @@ from lubrication.files import write_json, write_text
 
 from . import (
     cavitation_checks,
+    cavitation_transient,
     cavitation_trajectories,
     contact_checks,
     corrections,
     dynamics_checks,
+    finite_length_trajectories,
     full_contact_checks,
     lubrication_checks,
     model_choice_checks,
     stokes_trajectories,
+    table3,
 )
 from .checks import Check, Finding
 from .paper_claims import claims_table
@@ -31,11 +34,14 @@ GROUPS = {
     "Cavitation models in the Reynolds solver": cavitation_checks,
     "Cavitation in the equations of motion: does a rupturing film stop the sinking? (section 7)":
         cavitation_trajectories,
+    "Cavitation in transients: the JFO film's content in the state, and the bubble gauge": cavitation_transient,
     "Lubrication against full Stokes at finite delta/a": corrections,
     "Lubrication against full Stokes forces along trajectories of the paper's apparatus":
         stokes_trajectories,
     "Rough contact: figures 7-10 and Table 3 from simulations": contact_checks,
     "Rough contact in the full model: the limit to section 5 and the paper's apparatus": full_contact_checks,
+    "Table 3 re-inferred with the full model and exact finite-gap forces": table3,
+    "Finite length: trajectories of the apparatus with the gap open at both ends": finite_length_trajectories,
     "The automatic model choice against fresh reference solves": model_choice_checks,
 }
 
