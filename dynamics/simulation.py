@@ -231,7 +231,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     return trajectory
 
 
-#: 1 - kappa0 below which the full equations are not run with scipy's LSODA (see :func:`_check_start`).
+#: 1 - kappa0 below which the full equations are not run with scipy's LSODA (measured: it stalls there).
 LSODA_NEAR_CONTACT = 1e-3
 
 

@@ -238,7 +238,7 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
     kappa, omk, eps_dot, w_a, w_b : float
         Eccentricity, 1 - kappa, eps' (m/s), and the spins relative to the line of centres (rad/s).
     cpsi, spsi, vpsi, ppsi, wpsi, m
-        The Gauss rule of the cells (:func:`lubrication.reynolds._psi_rule`).
+        The Gauss rule of the cells (``lubrication.reynolds._psi_rule``).
     faces, node_p
         As :func:`film_geometry`.
     gauge : int

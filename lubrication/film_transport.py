@@ -82,7 +82,7 @@ Radau IIA integrator takes with a finite-difference Jacobian. The void, not
 the content, is the state so that a pressed node sits at v = 0 whatever the
 gap does, and the stiff relaxation does not turn a perturbation of the
 geometry into a switch. tau_r must be far below the time the walls take to
-carry liquid across a cell; its effect is O(tau_r) (:mod:`validation.cavitation_transient`:
+carry liquid across a cell; its effect is O(tau_r) (``validation.cavitation_transient``:
 tau_r = 1e-6 s against 1e-7 s moves the gap history of the steel apparatus'
 release by 8e-5 of 1 - kappa).
 
@@ -129,7 +129,7 @@ The bubble is what the film's cavities compress: a cavity of sum_j v_j per unit
 length raises p_res by about pressure L sum_j v_j / volume (1% of an atmosphere for
 1e-8 m^3 in 1 cm^3), while p_cav stays where it is. With a margin p_res - p_cav of a
 few Pa it is therefore the bubble's compression, not the margin, that sets where the
-film ruptures (the release of :mod:`validation.cavitation_transient` ends with
+film ruptures (the release of ``validation.cavitation_transient`` ends with
 p_res - p_cav near 900 Pa after starting at 3 Pa).
 
 Forces

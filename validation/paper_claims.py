@@ -366,7 +366,10 @@ def _cavitation(f: Found) -> str:
 
 def _cavitation_verdict(f: Found) -> tuple[bool, str]:
     return False, ("here every cavitation model, half-Sommerfeld truncation included, holds the inner cylinder "
-                   "off the wall and gives steady rolling; the text gives no details of the model it tried "
+                   "off the wall and gives steady rolling, under these conditions: the steel apparatus, 1-4 degrees, "
+                   "p_ref held at the widest gap, the steady gap set by the chosen margin p_ref - p_cav (on 2.4 "
+                   "degrees also with the film's content in the state and the end reservoirs' bubble setting the "
+                   "reference, at a gap 0.28 times as wide); the text gives no details of the model it tried "
                    "(Vener 2006), so the cause of the difference cannot be traced. Its 20% is measured against "
                    "rough-contact rolling and cannot be compared with the ratio to the decelerating full film.")
 

@@ -338,13 +338,13 @@ def _central_differences(fun, t, y, args):
 
 @jit
 def jacobian(t, y, args):
-    """d(rhs)/dy (:func:`_central_differences`)."""
+    """d(rhs)/dy by central differences (``_central_differences``)."""
     return _central_differences(rhs, t, y, args)
 
 
 @jit
 def polar_jacobian(t, y, args):
-    """d(polar_rhs)/dy (:func:`_central_differences`)."""
+    """d(polar_rhs)/dy by central differences (``_central_differences``)."""
     return _central_differences(polar_rhs, t, y, args)
 
 
@@ -374,7 +374,12 @@ def _reynolds(kappa, chi_dot, omega_a, omega_b, args):
 
 @jit(inline="always")
 def reduced_reynolds(y, args):
-    """Re* (:func:`_reynolds`) of a state ``y`` of :func:`rhs`."""
+    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of a state ``y`` of :func:`rhs`.
+
+    The Reynolds number of the flow relative to the line of centres, which
+    measures the error of quasi-steady Stokes forces (:mod:`lubrication.inertia`),
+    faded out where the line of centres is undefined (kappa -> 0).
+    """
     big_u = math.hypot(y[0], y[1])
     if big_u == 0.0:
         return 0.0
