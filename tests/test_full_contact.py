@@ -128,6 +128,13 @@ def test_steady_rolling_approaches_section_5_at_first_order_in_delta_over_a(psi)
     assert errors[-1] < 3e-3
 
 
+def test_a_steady_state_is_accepted_only_where_its_accelerations_vanish():
+    """Newton's answer is judged by its residual: x^2 + 1 has no real root, x^2 - 2 does."""
+    assert full_contact._solve(lambda x: [x[0] ** 2 - 2.0], [1.0])[0] == pytest.approx(math.sqrt(2.0), rel=1e-12)
+    with pytest.raises(ValueError, match="no steady contact state"):
+        full_contact._solve(lambda x: [x[0] ** 2 + 1.0], [1.0])
+
+
 def run(ap, kappa_star, psi, t_end_tau, kappa0=0.5):
     return simulate(ap, Initial(kappa=kappa0, phi=0.3), t_end_tau * ap.tau, forces=FORCES,
                     contact=ContactParams(kappa_star, psi), rtol=1e-9)

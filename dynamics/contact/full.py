@@ -216,6 +216,11 @@ def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: flo
 # -- the phases as the hybrid driver runs them ------------------------------------------
 
 #: Event components of the contact phases, in order (:func:`contact_events`).
+# A steady contact state is accepted when its accelerations, in units of
+# 1/tau^2, vanish to this: far below any physical acceleration, above the
+# rounding of the forces near contact.
+STEADY_RESIDUAL = 1e-9
+
 LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
 SLIDING_EVENTS = ("runaway", "lift", "stick")
 
@@ -430,7 +435,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
             r = contact_rates(y, p, *args, True, 0.0, tan_psi_hat, model)
             return [r[0] * tau * tau, r[2] * tau * tau]
 
-        chi, omega_b = fsolve(residual, [guess[0], guess[2] * tau], xtol=1e-12)
+        chi, omega_b = _solve(residual, [guess[0], guess[2] * tau])
         return np.array([chi, arm * omega_b / (a * tau), omega_b / tau])
 
     def residual(x):
@@ -438,5 +443,20 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
         r = contact_rates(y, p, *args, False, sigma, tan_psi_hat, model)
         return [r[0] * tau * tau, r[1] * tau * tau, r[2] * tau * tau]
 
-    chi, omega_a, omega_b = fsolve(residual, guess * np.array([1.0, tau, tau]), xtol=1e-12)
+    chi, omega_a, omega_b = _solve(residual, guess * np.array([1.0, tau, tau]))
     return np.array([chi, omega_a / tau, omega_b / tau])
+
+
+def _solve(residual, guess) -> np.ndarray:
+    """Newton (MINPACK's hybrid method) on the scaled residual, accepted only if it vanishes.
+
+    fsolve's "not making progress" at xtol = 1e-12 means the step cannot shrink
+    further in floating point, not that the root was missed: the residual,
+    of order one in units of 1/tau^2, decides.
+    """
+    x, info, _, message = fsolve(residual, guess, xtol=1e-12, full_output=True)
+    worst = float(np.max(np.abs(info["fvec"])))
+    if not worst <= STEADY_RESIDUAL:
+        raise ValueError(f"no steady contact state found near {np.asarray(guess).tolist()}: residual {worst:.1e} "
+                         f"(Newton: {message.strip()})")
+    return x
