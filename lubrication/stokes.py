@@ -424,8 +424,10 @@ def _check_geometry(a, b, kappa, n_around, n_across, clustering):
 
 
 #: Memory the cached factorised systems may hold together (bytes); the least recently
-#: used go first. A system of the default mesh at delta/a = 0.41 holds about 60 MB.
-CACHE_BYTES = 150e6
+#: used go first. A system of the default mesh at delta/a = 0.41 holds about 60 MB:
+#: one such is kept (its flow field and forces share it); solves of ever new
+#: geometries, as along a trajectory, gain nothing from more.
+CACHE_BYTES = 64e6
 
 _CACHE: OrderedDict = OrderedDict()
 

@@ -6,6 +6,7 @@ import time
 from pathlib import Path
 
 from lubrication.files import write_json, write_text
+from lubrication.stokes import clear_cache
 
 from . import (
     cavitation_checks,
@@ -63,6 +64,7 @@ def run_all(outdir: str | Path, quick: bool = False) -> tuple[list, float]:
     for title, module in GROUPS.items():
         group_start = time.perf_counter()
         records, figures, text = module.run(outdir, quick=quick)
+        clear_cache()  # a group's finite-element systems are not the next group's: free them
         group_checks = [r for r in records if isinstance(r, Check)]
         group_findings = [r for r in records if isinstance(r, Finding)]
         summary.append((title, sum(c.passed for c in group_checks), len(group_checks),
