@@ -6,8 +6,8 @@ at 2.5e-2 (f_chi per W_b, 1 + 2.5 delta/a in the corrections study) and the
 reduced equations' trajectory error (X_b and the gap 1 - kappa) at 3.0e-2
 there, against 0.58 and 0.66 at the apparatus' delta/a = 0.406. So one
 tolerance, 5e-2, separates the two gaps (closed forms and the reduced equations
-at 0.01, the Stokes table and the full equations at 0.406); at 1e-2 both gaps
-need the Stokes table.
+at 0.01, the exact Stokes forces and the full equations at 0.406); at 1e-2
+both gaps need the exact Stokes forces.
 """
 
 import json
@@ -103,8 +103,8 @@ def test_a_looser_tolerance_never_costs_more(delta):
 
 def stored_errors(choice: Choice) -> list[list[float]]:
     """The study's error grid (delta/a x kappa) of the chosen force model."""
-    name = {"stokes-exact": "stokes-table"}.get(choice.model, choice.model)
-    return next(e["error"] for e in study()["forces"] if e["model"] == name and e["options"] == choice.options)
+    return next(e["error"] for e in study()["forces"]
+                if e["model"] == choice.model and e["options"] == choice.options)
 
 
 def test_between_measured_gaps_the_worse_neighbour_is_used():

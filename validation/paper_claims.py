@@ -375,7 +375,7 @@ def _cavitation_verdict(f: Found) -> tuple[bool, str]:
 
 
 def _speed_law(f: Found) -> str:
-    return (f"Full model (2.1)-(2.4) with rough contact and Stokes-table forces, steel apparatus in 500 cSt oil "
+    return (f"Full model (2.1)-(2.4) with rough contact and exact Stokes forces, steel apparatus in 500 cSt oil "
             f"at 2.4 degrees, sigma = 50 microns: steady speed {f['stokes'].measured:.3f} times that of (6.1) "
             f"({f['stokes'].note}).")
 

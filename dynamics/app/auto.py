@@ -5,13 +5,13 @@ Every choice is read from the stored speed-versus-accuracy study
 nothing is guessed. The study holds, on a grid of delta/a and kappa:
 
 * for each force model (closed forms (2.5)-(2.7), the Reynolds solver with
-  its grid, profile and N, Stokes resistance tables, finite-element Stokes
+  its grid, profile and N, the exact Stokes resistance, finite-element Stokes
   meshes), the largest relative error of the five resistance coefficients
-  against a fine finite-element Stokes solve (T_a per W_b against
-  |T_a per W_a|) and the cost of one evaluation;
+  against the exact Stokes solution (T_a per W_b against |T_a per W_a|) and
+  the cost of one evaluation;
 * for the reduced equations (2.11) and the full equations (2.1)-(2.4), the
   relative error of (X_b, 1 - kappa) at the end of a trajectory against the full
-  equations with Stokes forces.
+  equations with the exact Stokes forces.
 
 Between two measured delta/a the worse of the two is used; below the
 smallest the smallest's (the errors of the lubrication forms and of the
@@ -46,11 +46,10 @@ class Choice:
     Attributes
     ----------
     model : str
-        Force model ("closed-form", "reynolds", "stokes": the tabulated Stokes
-        resistance) or equations ("reduced", "full").
+        Force model ("closed-form", "reynolds", "stokes-exact") or equations
+        ("reduced", "full").
     options : dict
-        Options of the force model's adapter (:mod:`dynamics.equations.forces`);
-        a Stokes table also needs the scene's delta/a.
+        Options of the force model's adapter (:mod:`dynamics.equations.forces`).
     error : float or None
         The measured error the choice rests on (relative; see the module
         docstring); None when the choice follows from another one.
@@ -204,7 +203,7 @@ def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto"
         Mean gap over inner radius, >= 0.
     forces : {"auto", "closed-form"}
         The forces the full equations would have. "auto": the best measured
-        (Stokes-table) forces, whose recorded error is that of the integration
+        (exact Stokes) forces, whose recorded error is that of the integration
         only. "closed-form": the reduced equations' own forces; then the full
         equations are chosen only when they are measured more accurate, since
         at finite delta/a the full equations with closed forms need not be
