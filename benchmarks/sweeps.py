@@ -44,7 +44,8 @@ removes a map already in DIR, e.g.
 
     python -m benchmarks.sweeps --points 10000 --output docs/sweeps/regime_map --replace
 
-Writes ``benchmarks/results/sweeps.json`` and ``sweeps.md``.
+Writes ``benchmarks/results/sweeps.json`` and ``sweeps.md`` for the shipped
+10,000-point map, ``sweeps_1k.*`` and ``sweeps_100k.*`` for the other grids.
 """
 
 from __future__ import annotations
@@ -387,7 +388,8 @@ def main(argv=None) -> None:
     results["trajectories"] = run_trajectories(args.sample)
     results["map"] = run_map(args.points, args.output, args.replace, args.per_point)
     results["seconds"] = time.perf_counter() - started
-    publish("sweeps", results, to_markdown(results))
+    name = "sweeps" if args.points == 10_000 else f"sweeps_{args.points // 1000}k"
+    publish(name, results, to_markdown(results))
 
 
 if __name__ == "__main__":
