@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from lubrication.geometry import RESISTANCE_NAMES as RATIO_NAMES
-from validation import corrections  # noqa: E402
+from validation import cli, corrections
 from validation.checks import comparisons
 
 
@@ -58,9 +58,9 @@ def test_thin_gap_coefficient_recovers_a_known_expansion():
 
 def test_subcommand_registers(tmp_path):
     parser = ArgumentParser()
-    corrections.register(parser.add_subparsers())
+    cli.register_corrections(parser.add_subparsers())
     args = parser.parse_args(["corrections", "-o", str(tmp_path), "--quick"])
-    assert args.run is corrections.corrections_command and args.output == str(tmp_path)
+    assert args.run is cli._corrections and args.output == str(tmp_path) and args.quick
 
 
 def test_the_study_runs_without_the_finite_element_extra(monkeypatch):

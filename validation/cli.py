@@ -1,21 +1,42 @@
-"""``snail validate``: registered into the ``snail`` command through the ``snail.commands`` entry point."""
+"""``snail validate`` and ``snail corrections``: registered into the ``snail`` command through the
+``snail.commands`` entry point.
+
+Registering a command imports nothing of the checks: every ``snail`` command
+builds the whole parser, and the checks' imports (finite elements, figures)
+would cost every one of them.
+"""
 
 from __future__ import annotations
 
-__all__ = ["register"]
+__all__ = ["register", "register_corrections"]
 
 
 def register(subparsers) -> None:
+    """Add ``snail validate``."""
     p = subparsers.add_parser(
         "validate", help="run the validation checks and write the report",
         description="Run every validation check; write report.md, figures and validation.json "
                     "(a list of {name, measured, reference, tolerance, passed}).")
     p.add_argument("-o", "--output", default="validation-report", help="output folder (default validation-report)")
     p.add_argument("--quick", action="store_true", help="a fast subset, without figures")
-    p.set_defaults(run=_run)
+    p.set_defaults(run=_validate)
 
 
-def _run(args) -> int:
+def register_corrections(subparsers) -> None:
+    """Add ``snail corrections``."""
+    p = subparsers.add_parser(
+        "corrections", help="delta/a correction study: lubrication and Reynolds against Stokes",
+        description="Ratio of the full-Stokes and the exact-gap Reynolds resistance coefficients to "
+                    "the lubrication forms (2.5)-(2.7) against kappa for delta/a from 0.01 to 1, the "
+                    "thin-gap correction coefficients and the paper's apparatus. Writes "
+                    "corrections.csv, corrections.json and corrections.png.")
+    p.add_argument("-o", "--output", default="corrections", help="output folder (default corrections)")
+    p.add_argument("--quick", action="store_true",
+                   help="only the four gaps the checks need and one finite-element case")
+    p.set_defaults(run=_corrections)
+
+
+def _validate(args) -> int:
     from dynamics.app.folder import writable_folder
 
     from .suite import run_all
@@ -28,4 +49,21 @@ def _run(args) -> int:
     for c in failed:
         print(f"FAILED: {c.name}: measured {c.measured:.6g}, reference {c.reference:.6g}, "
               f"tolerance {c.tolerance:.3g} ({c.kind})")
+    return 1 if failed else 0
+
+
+def _corrections(args) -> int:
+    """Run the study, write CSV, JSON and figure into ``args.output``."""
+    from dynamics.app.folder import writable_folder
+
+    from .checks import Check
+    from .corrections import run
+
+    writable_folder(args.output)  # an unusable path is bad input, found before the study runs
+    records, _, text = run(args.output, quick=args.quick)
+    checks = [c for c in records if isinstance(c, Check)]
+    failed = [c for c in checks if not c.passed]
+    print(text)
+    print(f"{len(checks) - len(failed)} of {len(checks)} checks passed; "
+          f"corrections.csv, corrections.json and corrections.png in {args.output}")
     return 1 if failed else 0

@@ -39,7 +39,7 @@ from lubrication.stokes_exact import stokes_exact_ratios
 
 from .checks import Check, Finding, absolute, at_least, at_most
 
-__all__ = ["DELTAS", "APPARATUS", "corrections_command", "register", "run", "study"]
+__all__ = ["DELTAS", "APPARATUS", "run", "study"]
 
 RATIO_NAMES = RESISTANCE_NAMES
 
@@ -332,31 +332,3 @@ def run(outdir, quick: bool = False):
     write_json(outdir / "corrections.json", to_json(result, checks))
     figure(result, outdir / "corrections.png")
     return checks, ["corrections.png"], _paragraph(result)
-
-
-def corrections_command(args) -> int:
-    """``snail corrections``: run the study, write CSV, JSON and figure into ``args.output``."""
-    from dynamics.app.folder import writable_folder
-
-    writable_folder(args.output)  # an unusable path is bad input, found before the study runs
-    records, _, text = run(args.output, quick=args.quick)
-    checks = [c for c in records if isinstance(c, Check)]
-    failed = [c for c in checks if not c.passed]
-    print(text)
-    print(f"{len(checks) - len(failed)} of {len(checks)} checks passed; "
-          f"corrections.csv, corrections.json and corrections.png in {args.output}")
-    return 1 if failed else 0
-
-
-def register(subparsers) -> None:
-    """Add ``snail corrections`` (entry point of the ``snail.commands`` group)."""
-    p = subparsers.add_parser(
-        "corrections", help="delta/a correction study: lubrication and Reynolds against Stokes",
-        description="Ratio of the full-Stokes and the exact-gap Reynolds resistance coefficients to "
-                    "the lubrication forms (2.5)-(2.7) against kappa for delta/a from 0.01 to 1, the "
-                    "thin-gap correction coefficients and the paper's apparatus. Writes "
-                    "corrections.csv, corrections.json and corrections.png.")
-    p.add_argument("-o", "--output", default="corrections", help="output folder (default corrections)")
-    p.add_argument("--quick", action="store_true",
-                   help="only the four gaps the checks need and one finite-element case")
-    p.set_defaults(run=corrections_command)

@@ -20,7 +20,7 @@ __all__ = ["trajectory_figure"]
 
 _EQUATIONS = {"full": "full equations (2.1)-(2.4)", "reduced": "reduced equations (2.11)"}
 _FORCES = {"closed-form": "lubrication forces (2.5)-(2.7)", "reynolds": "Reynolds-equation forces",
-           "stokes": "Stokes forces (finite elements, tabulated)", "stokes-exact": "exact Stokes forces"}
+           "stokes": "exact Stokes forces", "stokes-exact": "exact Stokes forces"}
 
 
 def _title(trajectory) -> str:
@@ -64,8 +64,11 @@ def trajectory_figure(trajectory):
     rate_unit = "1/tau" if dimless else "rad/s"
     kappa, phi, gap = c["kappa"], c["phi"], c["one_minus_kappa"]
 
-    fig = Figure(figsize=(10.5, 7.0), layout="constrained")
-    grid = fig.add_gridspec(4, 2, width_ratios=(1.0, 1.35))
+    # Fixed margins, not a layout engine: the labels are known, and constrained layout
+    # would cost more than drawing the figure.
+    fig = Figure(figsize=(10.5, 7.0))
+    grid = fig.add_gridspec(4, 2, width_ratios=(1.0, 1.35), left=0.075, right=0.985, bottom=0.075,
+                            top=0.865, wspace=0.2, hspace=0.12)
     ax_path = fig.add_subplot(grid[:, 0])
     x, z = kappa * np.sin(phi), kappa * np.cos(phi)
     points = np.column_stack([x, z]).reshape(-1, 1, 2)
@@ -88,7 +91,7 @@ def trajectory_figure(trajectory):
     ax_path.set_ylabel("kappa cos(phi)  (up)")
     ax_path.set_title("path of the inner centre A relative to B", fontsize=9)
     ax_path.legend(fontsize=8, loc="upper right")
-    bar = fig.colorbar(lines, ax=ax_path, orientation="horizontal", fraction=0.05, pad=0.08)
+    bar = fig.colorbar(lines, ax=ax_path, orientation="horizontal", fraction=0.05, pad=0.1)
     bar.set_label(f"{t_label}, log scale")
 
     ax_gap = fig.add_subplot(grid[0, 1])
