@@ -246,21 +246,8 @@ def contact_rhs(t, y, args):
 
 @jit
 def contact_jacobian(t, y, args):
-    """d(contact_rhs)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j)."""
-    typical = args[2]
-    n = y.size
-    jac = np.empty((n, n))
-    yp = y.copy()
-    for j in range(n):
-        h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])
-        yp[j] = y[j] + h
-        up = contact_rhs(t, yp, args)
-        yp[j] = y[j] - h
-        down = contact_rhs(t, yp, args)
-        yp[j] = y[j]
-        for i in range(n):
-            jac[i, j] = (up[i] - down[i]) / (2.0 * h)
-    return jac
+    """d(contact_rhs)/dy by central differences (:func:`dynamics.equations.full.central_differences`)."""
+    return full.central_differences(contact_rhs, t, y, args)
 
 
 @jit

@@ -35,7 +35,7 @@ from dynamics.apparatus import Apparatus
 from dynamics.engine import EVENT
 from dynamics.equations import full
 from dynamics.equations.forces import closed_form
-from dynamics.equations.full import _A, _B, _LEN, _MU
+from dynamics.equations.full import _A, _B, _LEN, _MU, central_differences
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.integrate import integrate
@@ -94,29 +94,10 @@ def rhs(t, y, args):
     return dy
 
 
-@jit(inline="always")
-def _central_differences(fun, t, y, args):
-    """d fun/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j) (``args[2]``)."""
-    typical = args[2]
-    n = y.size
-    jac = np.empty((n, n))
-    yp = y.copy()
-    for j in range(n):
-        h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
-        yp[j] = y[j] + h
-        up = fun(t, yp, args)
-        yp[j] = y[j] - h
-        down = fun(t, yp, args)
-        yp[j] = y[j]
-        for i in range(n):
-            jac[i, j] = (up[i] - down[i]) / (2.0 * h)
-    return jac
-
-
 @jit
 def jacobian(t, y, args):
     """d(rhs)/dy by central differences (module docstring)."""
-    return _central_differences(rhs, t, y, args)
+    return central_differences(rhs, t, y, args)
 
 
 def void_scale(apparatus_or_annulus, n: int) -> float:
@@ -284,7 +265,7 @@ def rocking_rhs(t, y, args):
 @jit
 def rocking_jacobian(t, y, args):
     """d(rocking_rhs)/dy by central differences."""
-    return _central_differences(rocking_rhs, t, y, args)
+    return central_differences(rocking_rhs, t, y, args)
 
 
 @jit

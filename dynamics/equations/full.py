@@ -74,6 +74,7 @@ __all__ = [
     "POLAR_EVENT_NAMES",
     "POLAR_STATE_NAMES",
     "cartesian_events",
+    "central_differences",
     "polar_events",
     "polar_jacobian",
     "polar_observables",
@@ -313,7 +314,7 @@ def to_cartesian(apparatus, y: np.ndarray) -> np.ndarray:
 
 
 @jit(inline="always")
-def _central_differences(fun, t, y, args):
+def central_differences(fun, t, y, args):
     """d(fun)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
@@ -338,14 +339,14 @@ def _central_differences(fun, t, y, args):
 
 @jit
 def jacobian(t, y, args):
-    """d(rhs)/dy by central differences (``_central_differences``)."""
-    return _central_differences(rhs, t, y, args)
+    """d(rhs)/dy by central differences (``central_differences``)."""
+    return central_differences(rhs, t, y, args)
 
 
 @jit
 def polar_jacobian(t, y, args):
-    """d(polar_rhs)/dy by central differences (``_central_differences``)."""
-    return _central_differences(polar_rhs, t, y, args)
+    """d(polar_rhs)/dy by central differences (``central_differences``)."""
+    return central_differences(polar_rhs, t, y, args)
 
 
 #: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
