@@ -54,7 +54,6 @@ import argparse
 import datetime
 import math
 import random
-import shutil
 import statistics
 import sys
 import tempfile

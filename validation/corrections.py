@@ -39,7 +39,7 @@ from lubrication.stokes_exact import stokes_exact_ratios
 
 from .checks import Check, Finding, absolute, at_least, at_most
 
-__all__ = ["DELTAS", "APPARATUS", "run", "study"]
+__all__ = ["APPARATUS", "DELTAS", "run", "study"]
 
 RATIO_NAMES = RESISTANCE_NAMES
 

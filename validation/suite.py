@@ -10,8 +10,8 @@ from lubrication.stokes import clear_cache
 
 from . import (
     cavitation_checks,
-    cavitation_transient,
     cavitation_trajectories,
+    cavitation_transient,
     contact_checks,
     corrections,
     dynamics_checks,
