@@ -23,7 +23,11 @@ import math
 
 import numpy as np
 
-from ._cavitation_kernels import _cell_coefficients, _film_integrals
+from ._cavitation_kernels import (
+    _cell_coefficients,
+    _film_integrals,
+    half_sommerfeld_weights,
+)
 from ._jit import jit
 from ._kernels import (
     ECCENTRIC,
@@ -475,15 +479,7 @@ def lines_film(integrals_lines, masses_lines, u_a, u_b, phi, outflow, wz, half_s
     for k in range(n_lines):
         y = phi[k]
         if half_sommerfeld:
-            for j in range(n):
-                jp = j + 1 if j < n - 1 else 0
-                lo, hi = y[j] - y_cav, y[jp] - y_cav
-                if lo < 0.0 and hi < 0.0:
-                    weight[j] = 0.0
-                elif lo < 0.0 or hi < 0.0:
-                    weight[j] = max(lo, hi) / abs(hi - lo)
-                else:
-                    weight[j] = 1.0
+            half_sommerfeld_weights(y, y_cav, weight)
         s_sin, s_chi, s_torque = _film_integrals(integrals_lines[k], half_u, u_a, u_b, y, weight, ones)
         c_sin, c_chi, c_torque = flux_correction(integrals_lines[k], masses_lines[k], outflow[k], weight)
         if half_sommerfeld:
