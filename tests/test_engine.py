@@ -11,9 +11,13 @@ Errors are measured in tolerance units, e = |y - y_ref| / (atol + rtol |y_ref|).
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import signal
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -39,6 +43,7 @@ from dynamics.engine import (
     no_events,
     radau,
 )
+from dynamics.engine.borrow import borrow
 from dynamics.engine.state import STATUS
 from lubrication._jit import jit
 
@@ -678,3 +683,48 @@ def test_generic_driver_from_compiled_code_matches():
     np.testing.assert_array_equal(kind, run.kind)
     np.testing.assert_array_equal(event, run.event)
     np.testing.assert_array_equal(state.counters, run.state.counters)
+
+
+# --------------------------------------------------------------------------- memory
+
+@jit
+def _borrowed_probe(pair, x):
+    """Writes through borrowed views of ``pair`` (a nested tuple) and returns the scalar passed through."""
+    view = borrow(pair)
+    view[0][0] = x
+    view[1][1][1] = 2.0 * x
+    return view[1][0]
+
+
+def test_borrowed_views_write_to_the_arrays_they_come_from():
+    first, second = np.zeros(2), np.zeros(3)
+    assert _borrowed_probe((first, (7.5, second)), 1.25) == 7.5
+    np.testing.assert_array_equal(first, [1.25, 0.0])
+    np.testing.assert_array_equal(second, [0.0, 2.5, 0.0])
+
+
+_FREES = """
+import json, numpy as np
+from numba.core.runtime import rtsys
+from dynamics.engine import integrate
+from tests.test_engine import MU, vdp, vdp_jac, vdp_events
+options = dict(args=MU, rtol=1e-6, atol=1e-6, events=vdp_events, chunk_steps=100, t_eval=np.linspace(0, 2000, 301))
+integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], **options)  # compiled and warm
+before = rtsys.get_allocation_stats()
+run = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], **options)
+del run
+after = rtsys.get_allocation_stats()
+print(json.dumps([after.alloc - before.alloc, after.free - before.free,
+                  after.mi_alloc - before.mi_alloc, after.mi_free - before.mi_free]))
+"""
+
+
+def test_a_run_frees_what_it_allocates_and_nothing_more():
+    """numba's allocation counts: every allocation of a run is freed once (a leak or a double free fails)."""
+    env = {**os.environ, "NUMBA_NRT_STATS": "1"}
+    done = subprocess.run([sys.executable, "-c", _FREES], env=env, capture_output=True, text=True, timeout=600,
+                          cwd=Path(__file__).resolve().parents[1])
+    assert done.returncode == 0, done.stderr[-2000:]
+    allocated, freed, meminfos, meminfos_freed = json.loads(done.stdout.splitlines()[-1])
+    assert allocated > 1000 and freed == allocated
+    assert meminfos == meminfos_freed

@@ -150,7 +150,7 @@ snail_api_groups = [
     ("The integrator", [
         "dynamics.integrate", "dynamics.engine", "dynamics.engine.ivp", "dynamics.engine.driver",
         "dynamics.engine.compiled", "dynamics.engine.radau", "dynamics.engine.roots", "dynamics.engine.linalg",
-        "dynamics.engine.state",
+        "dynamics.engine.state", "dynamics.engine.borrow",
     ]),
     ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "dynamics.scenes.units"]),
     ("The application: runs, files, sweeps, the command", [

@@ -37,6 +37,8 @@ Modules, one concept each, in the order a step uses them:
 ``state``
     :class:`State`, the resumable state of a run (a named tuple of arrays),
     its indices and the status codes.
+``borrow``
+    Views of the state's arrays that numba counts no references to, for the loop.
 ``linalg``
     LU factorisation with partial pivoting and solves, real and complex.
 ``radau``

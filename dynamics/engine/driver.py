@@ -46,13 +46,13 @@ import numpy as np
 
 from lubrication._jit import jit
 
+from .borrow import borrow
 from .radau import (
     copy_into,
     dense_eval,
     evaluate,
     evaluate_jacobian,
     initial_step,
-    new_work,
     newton_tolerance,
     step,
 )
@@ -96,7 +96,9 @@ END = np.int64(16)
 NO_EVENT = np.int64(-1)
 FIRST_CAPACITY = np.int64(64)
 
-#: Output rows being collected; ``count[0]`` rows are filled; arrays grow by doubling.
+#: Output rows being collected; ``count[0]`` rows are filled. Room is made before a
+#: step's rows are written (a larger copy between passes of :func:`advance`), so that
+#: writing never reallocates.
 Rows = namedtuple("Rows", ["t", "y", "kind", "event", "count"])
 
 
@@ -112,27 +114,41 @@ def _new_rows(n, capacity):
                 np.full(capacity, -1, dtype=np.int64), np.zeros(1, dtype=np.int64))
 
 
+@jit(cache=False)
+def _grown(rows, more):
+    """A copy of ``rows`` with room for ``more`` rows besides those filled, at least twice the capacity."""
+    k = rows.count[0]
+    bigger = _new_rows(rows.y.shape[1], max(2 * rows.t.shape[0], k + more))
+    for r in range(k):
+        bigger.t[r] = rows.t[r]
+        bigger.kind[r] = rows.kind[r]
+        bigger.event[r] = rows.event[r]
+        for j in range(rows.y.shape[1]):
+            bigger.y[r, j] = rows.y[r, j]
+    bigger.count[0] = k
+    return bigger
+
+
 @jit(cache=False, inline="always")
 def _push(rows, t, y, kind, event):
-    """Append a row, doubling the arrays when full; returns the (possibly new) rows."""
+    """Append a row (there is room: see :func:`_rows_needed`)."""
     k = rows.count[0]
-    n = rows.y.shape[1]
-    if k == rows.t.shape[0]:
-        bigger = _new_rows(n, 2 * k)
-        for r in range(k):
-            bigger.t[r] = rows.t[r]
-            bigger.kind[r] = rows.kind[r]
-            bigger.event[r] = rows.event[r]
-            for j in range(n):
-                bigger.y[r, j] = rows.y[r, j]
-        rows = Rows(bigger.t, bigger.y, bigger.kind, bigger.event, rows.count)
     rows.t[k] = t
-    for j in range(n):
+    for j in range(rows.y.shape[1]):
         rows.y[k, j] = y[j]
     rows.kind[k] = kind
     rows.event[k] = event
     rows.count[0] = k + 1
-    return rows
+
+
+@jit(cache=False, inline="always")
+def _rows_needed(s, found):
+    """The most rows that the step just accepted, with ``found`` events, writes: samples, events, step, end."""
+    t_eval = s.t_eval
+    last = s.counters[T_EVAL_POS]
+    while last < t_eval.shape[0] and t_eval[last] <= s.scalars[T]:
+        last += 1
+    return last - s.counters[T_EVAL_POS] + found + 2
 
 
 @jit(cache=False, inline="always")
@@ -142,13 +158,12 @@ def _emit_samples(s, rows, t_upto, y):
     pos = s.counters[T_EVAL_POS]
     while pos < t_eval.shape[0] and t_eval[pos] <= t_upto:
         if t_eval[pos] == s.scalars[T]:
-            rows = _push(rows, t_eval[pos], s.y, SAMPLE, NO_EVENT)
+            _push(rows, t_eval[pos], s.y, SAMPLE, NO_EVENT)
         else:
             dense_eval(s, t_eval[pos], y)
-            rows = _push(rows, t_eval[pos], y, SAMPLE, NO_EVENT)
+            _push(rows, t_eval[pos], y, SAMPLE, NO_EVENT)
         pos += 1
     s.counters[T_EVAL_POS] = pos
-    return rows
 
 
 @jit(cache=False, inline="always")
@@ -160,48 +175,73 @@ def _crosses(g_old, g_new, direction):
 
 
 @jit(cache=False, inline="always")
-def _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratch):
-    """Events and output rows of the step just accepted; sets the status when the run ends."""
-    t_new = s.scalars[T]
-    every_step = s.counters[EVERY_STEP] != 0
+def _locate_events(events, args, s):
+    """Find the events that fire in the step just accepted; returns their number.
+
+    Their times and indices go to ``s.work.roots`` and ``s.work.which``, in time
+    order (ties keep the event order); ``s.g`` moves on to the step's end.
+    """
     m = s.g.shape[0]
-    if m > 0:
-        evaluate(events, t_new, s.y, args, g_new)
-        found = 0
-        for i in range(m):
-            if _crosses(s.g[i], g_new[i], s.direction[i]):
-                root = event_root(events, args, s, i, s.scalars[T_OLD], t_new, s.g[i], g_new[i], y, g_scratch)
-                # insertion in time order (ties keep the event order)
-                k = found
-                while k > 0 and roots[k - 1] > root:
-                    roots[k] = roots[k - 1]
-                    which[k] = which[k - 1]
-                    k -= 1
-                roots[k] = root
-                which[k] = i
-                found += 1
-        copy_into(s.g, g_new)
-        for r in range(found):
-            t_event, i = roots[r], which[r]
-            rows = _emit_samples(s, rows, t_event, y)
-            if t_event == t_new:
-                copy_into(y_event, s.y)
-            else:
-                dense_eval(s, t_event, y_event)
-            rows = _push(rows, t_event, y_event, EVENT, i)
-            s.event_count[i] += 1
-            if s.terminal[i] > 0 and s.event_count[i] >= s.terminal[i]:
-                s.counters[STATUS] = TERMINAL_EVENT
-                s.counters[STOP_EVENT] = i
-                s.scalars[T] = t_event  # the run ends at the event, with the state there
-                copy_into(s.y, y_event)
-                return rows
-    rows = _emit_samples(s, rows, t_new, y)
-    if every_step:
-        rows = _push(rows, t_new, s.y, STEP, NO_EVENT)
+    if m == 0:
+        return 0
+    w = s.work
+    roots, which, g_new = w.roots, w.which, w.g_new
+    t_new = s.scalars[T]
+    evaluate(events, t_new, s.y, args, g_new)
+    found = 0
+    for i in range(m):
+        if _crosses(s.g[i], g_new[i], s.direction[i]):
+            root = event_root(events, args, s, i, s.scalars[T_OLD], t_new, s.g[i], g_new[i], w.y_dense, w.g_root)
+            k = found  # insertion in time order
+            while k > 0 and roots[k - 1] > root:
+                roots[k] = roots[k - 1]
+                which[k] = which[k - 1]
+                k -= 1
+            roots[k] = root
+            which[k] = i
+            found += 1
+    copy_into(s.g, g_new)
+    return found
+
+
+@jit(cache=False, inline="always")
+def _output_due(s, found):
+    """Whether the step just accepted, with ``found`` events, writes a row or ends the run."""
+    t_new = s.scalars[T]
+    pos = s.counters[T_EVAL_POS]
+    return (found > 0 or s.counters[EVERY_STEP] != 0 or t_new >= s.scalars[T_END]
+            or (pos < s.t_eval.shape[0] and s.t_eval[pos] <= t_new))
+
+
+@jit(cache=False, inline="always")
+def _rows_of_step(s, rows, found):
+    """Output rows of the step just accepted and of its ``found`` events; sets the status when the run ends.
+
+    Called only when :func:`_output_due`, with room for :func:`_rows_needed` rows.
+    """
+    w = s.work
+    y, y_event = w.y_dense, w.y_event
+    t_new = s.scalars[T]
+    for r in range(found):
+        t_event, i = w.roots[r], w.which[r]
+        _emit_samples(s, rows, t_event, y)
+        if t_event == t_new:
+            copy_into(y_event, s.y)
+        else:
+            dense_eval(s, t_event, y_event)
+        _push(rows, t_event, y_event, EVENT, i)
+        s.event_count[i] += 1
+        if s.terminal[i] > 0 and s.event_count[i] >= s.terminal[i]:
+            s.counters[STATUS] = TERMINAL_EVENT
+            s.counters[STOP_EVENT] = i
+            s.scalars[T] = t_event  # the run ends at the event, with the state there
+            copy_into(s.y, y_event)
+            return
+    _emit_samples(s, rows, t_new, y)
+    if s.counters[EVERY_STEP] != 0:
+        _push(rows, t_new, s.y, STEP, NO_EVENT)
     if t_new >= s.scalars[T_END]:
         s.counters[STATUS] = REACHED_END
-    return rows
 
 
 @jit(cache=False)
@@ -295,13 +335,15 @@ def advance(fun, jac, events, args, s, chunk_steps):
         Event index of EVENT rows, -1 elsewhere.
         The rows written in this call only.
     """
+    # (the caller keeps the state and args alive; nothing borrowed leaves this function)
+    s = borrow(s)
+    args = borrow(args)
     n = s.y.shape[0]
-    m = s.g.shape[0]
     counters = s.counters
-    rows = _new_rows(n, FIRST_CAPACITY)
+    owned = _new_rows(n, FIRST_CAPACITY)
     status = counters[STATUS]
     if counters[STARTED] and status != RUNNING and status != PAUSED:
-        return _trimmed(rows)  # nothing left to do
+        return _trimmed(owned)  # nothing left to do
     if status == PAUSED:
         counters[STATUS] = RUNNING
     if not counters[STARTED]:
@@ -311,36 +353,42 @@ def advance(fun, jac, events, args, s, chunk_steps):
             kind |= START | SAMPLE
             counters[T_EVAL_POS] += 1
         if kind != 0:
-            rows = _push(rows, s.scalars[T], s.y, kind, NO_EVENT)
-    w = new_work(n)
-    roots = np.empty(m)
-    which = np.empty(m, dtype=np.int64)
-    y = np.empty(n)
-    y_event = np.empty(n)
-    g_new = np.empty(m)
-    g_scratch = np.empty(m)
+            _push(borrow(owned), s.scalars[T], s.y, kind, NO_EVENT)
     taken = 0
+    # The steps run in passes, one per size of the output arrays: they are replaced only
+    # between passes, so that within one the loop holds nothing numba counts references to.
     while counters[STATUS] == RUNNING:
-        if counters[STEPS] >= counters[MAX_STEPS]:
-            counters[STATUS] = MAX_STEPS_REACHED
-            break
-        if chunk_steps > 0 and taken >= chunk_steps:
-            counters[STATUS] = PAUSED
-            break
-        code = step(fun, jac, args, s, w)
-        if code != RUNNING:
-            counters[STATUS] = code
-            break
-        taken += 1
-        rows = _after_step(events, args, s, rows, roots, which, y, y_event, g_new, g_scratch)
+        rows = borrow(owned)
+        waiting = -1  # the events of a step whose rows wait for room
+        while counters[STATUS] == RUNNING:
+            if counters[STEPS] >= counters[MAX_STEPS]:
+                counters[STATUS] = MAX_STEPS_REACHED
+                break
+            if chunk_steps > 0 and taken >= chunk_steps:
+                counters[STATUS] = PAUSED
+                break
+            code = step(fun, jac, args, s)
+            if code != RUNNING:
+                counters[STATUS] = code
+                break
+            taken += 1
+            found = _locate_events(events, args, s)
+            if _output_due(s, found):
+                if rows.count[0] + _rows_needed(s, found) > rows.t.shape[0]:
+                    waiting = found
+                    break
+                _rows_of_step(s, rows, found)
+        if waiting >= 0:
+            owned = _grown(owned, _rows_needed(s, waiting))
+            _rows_of_step(s, borrow(owned), waiting)
     status = counters[STATUS]
-    if status != PAUSED:
-        k = rows.count[0]
-        if (status == REACHED_END or status == TERMINAL_EVENT) and k > 0 and rows.t[k - 1] == s.scalars[T]:
-            rows.kind[k - 1] |= END
+    if status != PAUSED:  # (every pass leaves room for this row)
+        k = owned.count[0]
+        if (status == REACHED_END or status == TERMINAL_EVENT) and k > 0 and owned.t[k - 1] == s.scalars[T]:
+            owned.kind[k - 1] |= END
         else:
-            rows = _push(rows, s.scalars[T], s.y, END, NO_EVENT)
-    return _trimmed(rows)
+            _push(borrow(owned), s.scalars[T], s.y, END, NO_EVENT)
+    return _trimmed(owned)
 
 
 @jit(cache=False)

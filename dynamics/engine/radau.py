@@ -56,7 +56,6 @@ code follows scipy, so that scipy stays an exact cross-check.
 from __future__ import annotations
 
 import math
-from collections import namedtuple
 
 import numpy as np
 
@@ -96,13 +95,11 @@ __all__ = [
     "C",
     "E",
     "P",
-    "Work",
     "copy_into",
     "dense_eval",
     "evaluate",
     "evaluate_jacobian",
     "initial_step",
-    "new_work",
     "newton_tolerance",
     "predict_factor",
     "solve_collocation",
@@ -158,19 +155,6 @@ MAX_FACTOR = 10.0
 KEEP_STEP_BELOW = 1.2  # a step would grow by less than this: keep it and the factors
 JAC_RATE = 1e-3  # Newton contracting slower than this (after > 2 iterations): new Jacobian
 
-#: Scratch arrays of one step; nothing in them survives from one step to the next.
-Work = namedtuple("Work", ["Z0", "Z", "W", "F", "dW", "scale", "y_new", "f_new", "err", "ze", "y_stage",
-                           "b_real", "b_complex"])
-
-
-@jit(cache=False)
-def new_work(n):
-    """Allocate the scratch arrays of :func:`step` for ``n`` states."""
-    return Work(np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)),
-                np.zeros((3, n)), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
-                np.zeros(n), np.zeros(n), np.zeros(n, dtype=np.complex128))
-
-
 @jit(cache=False)
 def newton_tolerance(rtol):
     """Tolerance of the Newton iteration on the scaled increments (as RADAU5 and scipy)."""
@@ -210,9 +194,8 @@ def copy_into(dst, src):
                 dst[i, j] = src[i, j]
 
 
-# Inlined where they are called (like the other helpers of a step): numba counts
-# references to every array handed to a function that is called, with atomic
-# operations that cost as much as the rest of a step.
+# The helpers of a step are inlined where they are called: a step calls them many
+# times with few arithmetic operations each.
 @jit(cache=False, inline="always")
 def evaluate(function, t, y, args, out):
     """``out[:] = function(t, y, args)`` for ``fun`` or ``events``; returns whether every value is finite."""
@@ -300,10 +283,10 @@ def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
 
 
 @jit(cache=False, inline="always")
-def solve_collocation(fun, args, t, y, h, tol, s, w):
-    """Simplified Newton iteration for the stages, from the starting guess ``w.Z0``.
+def solve_collocation(fun, args, t, y, h, tol, s):
+    """Simplified Newton iteration for the stages, from the starting guess ``s.work.Z0``.
 
-    Returns (converged, iterations, rate, finite): ``w.Z`` holds the stages;
+    Returns (converged, iterations, rate, finite): ``s.work.Z`` holds the stages;
     ``rate`` is the last contraction rate (NaN before a second iteration);
     ``finite`` is False if ``fun`` returned a non-finite value.
     """
@@ -311,7 +294,7 @@ def solve_collocation(fun, args, t, y, h, tol, s, w):
     counters = s.counters
     m_real = MU_REAL / h
     m_complex = MU_COMPLEX / h
-    # (arrays taken out of the tuples once: numba counts a reference at each access)
+    w = s.work
     Z, W, F, dW, Z0, y_stage = w.Z, w.W, w.F, w.dW, w.Z0, w.y_stage
     b_real, b_complex, scale = w.b_real, w.b_complex, w.scale
     for i in range(3):
@@ -377,7 +360,7 @@ def _factor(s, h):
 
 
 @jit(cache=False, inline="always")
-def step(fun, jac, args, s, w):
+def step(fun, jac, args, s):
     """Take one accepted step from ``s`` (in place), retrying with smaller steps as needed.
 
     Returns RUNNING after an accepted step, otherwise the failure code
@@ -388,7 +371,7 @@ def step(fun, jac, args, s, w):
     n = s.y.shape[0]
     t, y, f = sc[T], s.y, s.f
     rtol, atol = sc[RTOL], s.atol
-    # (arrays taken out of the tuples once: numba counts a reference at each access)
+    w = s.work
     Z0, Z, y_stage, scale, y_new, f_new = w.Z0, w.Z, w.y_stage, w.scale, w.y_new, w.f_new
     err, ze, lu_real, piv_real = w.err, w.ze, s.lu_real, s.piv_real
     min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
@@ -427,7 +410,7 @@ def step(fun, jac, args, s, w):
                 regular = _factor(s, h)
                 counters[LU_VALID] = 1
             if regular:
-                converged, n_iter, rate, finite = solve_collocation(fun, args, t, y, h, sc[NEWTON_TOL], s, w)
+                converged, n_iter, rate, finite = solve_collocation(fun, args, t, y, h, sc[NEWTON_TOL], s)
             else:
                 counters[LU_VALID] = 0
             if not converged:

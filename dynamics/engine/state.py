@@ -30,6 +30,11 @@ the Newton starting guess of the next step); ``jac`` (n, n); ``lu_real``,
 ``piv_real`` and ``lu_complex``, ``piv_complex``, the factored Newton matrices;
 ``atol`` (n,); ``t_eval`` (k,); ``g`` event values at ``T`` (m,);
 ``event_count``, ``terminal``, ``direction`` (m,).
+
+``work`` (a :class:`Work`) holds the scratch arrays of the loop, whose contents
+do not outlive a step. The state owns them so that the loop, which steps with
+borrowed views of the state's arrays (:mod:`dynamics.engine.borrow`), owns no
+memory of its own.
 """
 
 from __future__ import annotations
@@ -73,12 +78,23 @@ __all__ = [
     "T_OLD",
     "State",
     "T",
+    "Work",
     "new_state",
 ]
 
 State = namedtuple("State", [
     "scalars", "counters", "y", "f", "y_old", "dense", "jac", "lu_real", "piv_real",
-    "lu_complex", "piv_complex", "atol", "t_eval", "g", "event_count", "terminal", "direction",
+    "lu_complex", "piv_complex", "atol", "t_eval", "g", "event_count", "terminal", "direction", "work",
+])
+
+#: Scratch of the loop. Of a step (:func:`dynamics.engine.radau.step`): the stage
+#: quantities ``Z0`` (Newton's starting guess), ``Z``, ``W``, ``F``, ``dW`` (3, n) and
+#: ``scale``, ``y_new``, ``f_new``, ``err``, ``ze``, ``y_stage``, ``b_real`` (n,),
+#: ``b_complex`` (n,) complex. Of the events and output: ``y_dense``, ``y_event`` (n,),
+#: ``g_new``, ``g_root``, ``roots`` (m,) and ``which`` (m,) int.
+Work = namedtuple("Work", [
+    "Z0", "Z", "W", "F", "dW", "scale", "y_new", "f_new", "err", "ze", "y_stage", "b_real", "b_complex",
+    "y_dense", "y_event", "g_new", "g_root", "roots", "which",
 ])
 
 # Indices into State.scalars.
@@ -112,11 +128,15 @@ def new_state(n, m, t_eval):
     scalars[ERR_OLD] = np.nan
     counters = np.zeros(N_COUNTERS, dtype=np.int64)
     counters[STOP_EVENT] = -1
+    work = Work(np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)), np.zeros((3, n)),
+                np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n),
+                np.zeros(n, dtype=np.complex128), np.zeros(n), np.zeros(n), np.zeros(m), np.zeros(m),
+                np.zeros(m), np.zeros(m, dtype=np.int64))
     return State(scalars, counters, np.zeros(n), np.zeros(n), np.zeros(n), np.zeros((n, 3)),
                  np.zeros((n, n)), np.zeros((n, n)), np.zeros(n, dtype=np.int64),
                  np.zeros((n, n), dtype=np.complex128), np.zeros(n, dtype=np.int64), np.zeros(n),
                  t_eval.copy(), np.zeros(m), np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.int64),
-                 np.zeros(m, dtype=np.int64))
+                 np.zeros(m, dtype=np.int64), work)
 
 
 def _state_type():
@@ -124,8 +144,10 @@ def _state_type():
     import numba
 
     f1, f2, i1 = np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
+    c1 = np.zeros(1, dtype=np.complex128)
+    work = Work(f2, f2, f2, f2, f2, f1, f1, f1, f1, f1, f1, f1, c1, f1, f1, f1, f1, f1, i1)
     return numba.typeof(State(f1, i1, f1, f1, f1, f2, f2, f2, i1, np.zeros((1, 1), dtype=np.complex128), i1,
-                              f1, f1, f1, i1, i1, i1))
+                              f1, f1, f1, i1, i1, i1, work))
 
 
 #: Numba type of a :class:`State`, for explicit signatures.
