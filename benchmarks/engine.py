@@ -54,7 +54,7 @@ if __package__ in (None, ""):
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from dynamics.engine import SAMPLE, check_inputs, engine_for, integrate, no_events
-from dynamics.engine.compiled import function_types
+from dynamics.engine.compiled import first_class, function_types
 from lubrication._jit import jit
 
 RTOLS = (1e-6, 1e-10)
@@ -167,10 +167,11 @@ def _scaled_error(y, y_ref, rtol, atol):
 def _engine_rows(fun, jac, args, y0, t_end, times, rtol, atol, y_ref, repeats):
     inputs = check_inputs(fun, jac, no_events, (0.0, t_end), y0, args=args, rtol=rtol, atol=atol, t_eval=times)
     engine = engine_for(args)
+    functions = first_class(fun, jac, no_events, args)  # as integrate() passes them
 
     def compiled():
-        state = engine.init(fun, jac, no_events, args, **inputs)
-        return state, engine.advance(fun, jac, no_events, args, state, 0)
+        state = engine.init(*functions, args, **inputs)
+        return state, engine.advance(*functions, args, state, 0)
 
     seconds, fastest, (state, rows) = _median(compiled, repeats)
     keep = (rows[2] & SAMPLE) != 0
