@@ -12,6 +12,7 @@ import signal
 import threading
 from dataclasses import dataclass, field
 
+import numba
 import numpy as np
 
 from .compiled import engine_for, first_class
@@ -283,8 +284,9 @@ def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=N
     inputs = check_inputs(fun, jac, events, t_span, y0, args=args, rtol=rtol, atol=atol, t_eval=t_eval,
                           steps=steps, terminal=terminal, direction=direction, first_step=first_step,
                           max_step=max_step, max_steps=max_steps)
-    engine = engine_for(args)
-    fun, jac, events = first_class(fun, jac, events, args)
+    args_type = numba.typeof(args)
+    engine = engine_for(args, args_type)
+    fun, jac, events = first_class(fun, jac, events, args, args_type)
     state = engine.init(fun, jac, events, args, **inputs)
     pieces = []
     with Interrupts() as interrupts:
