@@ -1,0 +1,49 @@
+"""The kernels a first `snail run` needs are compiled by the build and shipped in the wheel."""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import pickle
+import subprocess
+import sys
+import zipfile
+from pathlib import Path, PurePosixPath
+
+import numba
+import pytest
+
+from dynamics.app.precompile import SCENES
+from dynamics.scenes import load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_the_precompiled_scenes_are_the_default_with_both_equations():
+    equations = {load_scene(None, overrides).model.equations for overrides in SCENES}
+    assert equations == {"full", "reduced"}
+
+
+def _index_stamp(data: bytes):
+    """numba's version and the source stamp an index file (.nbi) was written with."""
+    stream = io.BytesIO(data)
+    version = pickle.load(stream)
+    stamp, _ = pickle.loads(stream.read())
+    return version, stamp
+
+
+@pytest.mark.slow
+def test_the_wheel_ships_caches_numba_accepts_for_its_own_sources(tmp_path):
+    subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-w", str(tmp_path)],
+                   check=True, capture_output=True)
+    with zipfile.ZipFile(next(tmp_path.glob("*.whl"))) as wheel:
+        indexes = [PurePosixPath(n) for n in wheel.namelist() if n.endswith(".nbi")]
+        # the engine's driver and both models' right-hand sides, compiled for the default scene
+        for kernel in ("driver.advance", "full.rhs-", "reduced.rhs-"):
+            assert any(i.name.startswith(kernel) for i in indexes), kernel
+        for index in indexes:
+            # numba loads an index only if its stamp is the sha256 of the source beside it
+            source = index.parent.parent / (index.name.split(".")[0] + ".py")
+            version, stamp = _index_stamp(wheel.read(str(index)))
+            assert version == numba.__version__
+            assert stamp == hashlib.sha256(wheel.read(str(source))).digest(), index
