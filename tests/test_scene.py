@@ -1,6 +1,7 @@
 """Scenes: the embedded default, units, every class of bad input, overrides and the resolved TOML."""
 
 import dataclasses
+import json
 import math
 
 import pytest
@@ -309,3 +310,24 @@ def test_a_byte_order_mark_is_not_part_of_the_scene(tmp_path):
     path = tmp_path / "bom.toml"
     path.write_bytes("\ufeff".encode() + resolved_toml(load_scene()).encode())
     assert load_scene(path) == load_scene()
+
+
+def test_quantities_read_before_convert_without_pint_and_equal_what_pint_gives(tmp_path, monkeypatch):
+    from dynamics.scenes import units
+
+    monkeypatch.setenv("SNAIL_CACHE", str(tmp_path))
+    units._memo.cache_clear()
+    first = units.to_si("200 cSt", "[length] ** 2 / [time]")
+    stored = json.loads((tmp_path / "units.json").read_text())
+    assert stored["si"] == {"200 cSt|[length] ** 2 / [time]": first}
+    # a later process reads the memo; a wrong value planted there shows it is used without pint
+    stored["si"]["200 cSt|[length] ** 2 / [time]"] = 1.0
+    (tmp_path / "units.json").write_text(json.dumps(stored))
+    units._memo.cache_clear()
+    assert units.to_si("200 cSt", "[length] ** 2 / [time]") == 1.0
+    # ... but only under the pint version that wrote it
+    stored["pint"] = "0.0"
+    (tmp_path / "units.json").write_text(json.dumps(stored))
+    units._memo.cache_clear()
+    assert units.to_si("200 cSt", "[length] ** 2 / [time]") == first == pytest.approx(2e-4, rel=1e-15)
+    units._memo.cache_clear()

@@ -8,15 +8,31 @@ shows as a swing about the resting angle (or the turns, for a winding run);
 the spins Omega_a and Omega_b; the distance rolled X_b. Time is in the scene's
 units, with tau stated; the title names the model in the paper's terms and
 says how the run ended.
+
+Drawing costs about 0.7 s, half of it importing matplotlib, which is longer
+than a default run takes once its kernels are compiled. :class:`FigureProcess`
+therefore imports matplotlib in a child process while the run computes, and
+draws there what it is sent.
 """
 
 from __future__ import annotations
 
+import io
 import math
+import pickle
+import subprocess
+import sys
+from types import SimpleNamespace
+from typing import Self
 
 import numpy as np
 
-__all__ = ["trajectory_figure"]
+__all__ = ["DPI", "FigureProcess", "figure_png", "trajectory_figure"]
+
+#: Resolution of trajectory.png.
+DPI = 110
+#: What the figure reads of a :class:`~dynamics.simulation.Trajectory`.
+_FIELDS = ("columns", "dimensionless", "equations", "forces", "status", "message", "groups", "tau")
 
 _EQUATIONS = {"full": "full equations (2.1)-(2.4)", "reduced": "reduced equations (2.11)"}
 _FORCES = {"closed-form": "lubrication forces (2.5)-(2.7)", "reynolds": "Reynolds-equation forces",
@@ -93,6 +109,7 @@ def trajectory_figure(trajectory):
     ax_path.legend(fontsize=8, loc="upper right")
     bar = fig.colorbar(lines, ax=ax_path, orientation="horizontal", fraction=0.05, pad=0.1)
     bar.set_label(f"{t_label}, log scale")
+    bar.minorticks_off()  # some fifty of them on a long run: a tenth of the drawing time
 
     ax_gap = fig.add_subplot(grid[0, 1])
     ax_gap.semilogy(t, np.maximum(gap, 1e-300), lw=0.8)
@@ -112,3 +129,54 @@ def trajectory_figure(trajectory):
         ax.tick_params(labelbottom=False)
     fig.suptitle(_title(trajectory), fontsize=9)
     return fig
+
+
+def figure_png(trajectory) -> bytes:
+    """trajectory.png of ``trajectory``, as the bytes of the file."""
+    buf = io.BytesIO()
+    trajectory_figure(trajectory).savefig(buf, format="png", dpi=DPI)
+    return buf.getvalue()
+
+
+class FigureProcess:
+    """Draws the figure in a child process, started before the run so that matplotlib imports meanwhile.
+
+    Use as a context manager; :meth:`png` sends a trajectory and returns
+    :func:`figure_png` of it. Leaving the context without calling it stops
+    the child. The child receives only the columns and labels the figure
+    reads (:data:`_FIELDS`), so it never imports the integrator.
+    """
+
+    def __enter__(self) -> Self:
+        # a session of its own: Ctrl-C at the terminal is the parent's to handle, which stops the child
+        self._child = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
+                                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+        return self
+
+    def png(self, trajectory) -> bytes:
+        """figure_png(trajectory), drawn by the child."""
+        view = SimpleNamespace(**{name: getattr(trajectory, name) for name in _FIELDS})
+        png, err = self._child.communicate(pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL))
+        if self._child.returncode != 0:
+            lines = err.decode(errors="replace").strip().splitlines() or [f"exit status {self._child.returncode}"]
+            msg = f"drawing trajectory.png failed: {lines[-1]}"  # the exception, without the child's traceback
+            raise RuntimeError(msg)
+        return png
+
+    def __exit__(self, *exc) -> None:
+        if self._child.returncode is None:
+            self._child.kill()
+            self._child.communicate()
+
+
+if __name__ == "__main__":  # the child of FigureProcess
+    # what trajectory_figure imports, imported now, while the parent runs
+    import matplotlib.collections
+    import matplotlib.colors
+    import matplotlib.figure  # noqa: F401
+
+    try:
+        view = pickle.load(sys.stdin.buffer)
+    except EOFError:  # the parent ended without a trajectory
+        sys.exit(0)
+    sys.stdout.buffer.write(figure_png(view))

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from dynamics.app.figures import trajectory_figure
+from dynamics.app.figures import figure_png
 from dynamics.app.folder import OutputFolder
 from dynamics.simulation import Trajectory
-from lubrication.files import save_figure, write_json, write_text
+from lubrication.files import write_bytes, write_json, write_text
 
 __all__ = ["CSV_COLUMNS", "MAX_ROWS", "summary", "thinning", "trajectory_csv", "write_outputs"]
 
@@ -88,20 +88,22 @@ def summary(trajectory: Trajectory, **extra) -> dict:
 
 
 def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",
-                  plot: bool = True, max_rows: int = MAX_ROWS, **extra) -> dict:
+                  plot: bool = True, max_rows: int = MAX_ROWS, draw=figure_png, **extra) -> dict:
     """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
 
     ``folder`` is an entered :class:`~dynamics.app.folder.OutputFolder` (the
     command line opens it before the run, so that a bad path is refused before
     anything is computed), or a path, which is opened here. The files go into
     its staging folder and are moved into place together; the summary is returned.
-    ``plot`` False leaves out the figure; a run of more than ``max_rows`` steps is
-    thinned in the CSV (:func:`thinning`).
+    ``plot`` False leaves out the figure, which ``draw(trajectory)`` returns as
+    PNG bytes (:func:`~dynamics.app.figures.figure_png`, or a
+    :class:`~dynamics.app.figures.FigureProcess`'s ``png``); a run of more than
+    ``max_rows`` steps is thinned in the CSV (:func:`thinning`).
     """
     if not isinstance(folder, OutputFolder):
         with OutputFolder(folder) as opened:
             return write_outputs(opened, trajectory, resolved_scene=resolved_scene, plot=plot,
-                                 max_rows=max_rows, **extra)
+                                 max_rows=max_rows, draw=draw, **extra)
     staging = folder.staging
     rows = thinning(trajectory, max_rows)
     if rows.size < trajectory.t.size:
@@ -112,7 +114,7 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
     info = summary(trajectory, **extra)
     write_text(staging / "trajectory.csv", trajectory_csv(trajectory, rows))
     if plot:
-        save_figure(staging / "trajectory.png", trajectory_figure(trajectory), dpi=110)
+        write_bytes(staging / "trajectory.png", draw(trajectory))
     if resolved_scene:
         write_text(staging / "scene.resolved.toml", resolved_scene)
     write_json(staging / "summary.json", info)

@@ -5,12 +5,19 @@ only plain SI numbers should not pay, so both happen when the first string with
 units is read; pint keeps its parsed definitions in the project's cache folder
 (:func:`lubrication.files.cache_folder`), which cuts the registry's build from
 0.45 s to 0.1 s after the first time.
+
+Even then pint's import costs 0.15-0.2 s, a tenth of a warm ``snail run``. So
+every quantity read is remembered in that folder (``units.json``), under
+pint's version: a scene whose strings were all read before (the default
+scene, after its first run) converts them without importing pint.
 """
 
 from __future__ import annotations
 
+import json
 from decimal import Decimal
 from functools import cache
+from importlib.metadata import version
 
 __all__ = ["UnitError", "to_si"]
 
@@ -30,6 +37,34 @@ def _registry():
     return pint.UnitRegistry(non_int_type=Decimal, cache_folder=cache_folder() / "pint")
 
 
+def _memo_path():
+    from lubrication.files import cache_folder
+
+    return cache_folder() / "units.json"
+
+
+@cache
+def _memo() -> dict:
+    """The quantities read before with this version of pint, {"text|dimension": SI value}."""
+    try:
+        stored = json.loads(_memo_path().read_text())
+    except (OSError, ValueError):  # none yet, or unreadable: start afresh
+        return {}
+    ok = isinstance(stored, dict) and stored.get("pint") == version("pint") and isinstance(stored.get("si"), dict)
+    return stored["si"] if ok else {}
+
+
+def _remember(key: str, value: float) -> None:
+    from lubrication.files import write_json
+
+    memo = _memo()
+    memo[key] = value
+    try:
+        write_json(_memo_path(), {"pint": version("pint"), "si": memo})
+    except (OSError, ValueError):  # a read-only folder, or inf (not JSON): the next run imports pint
+        pass
+
+
 def to_si(text: str, dimension: str) -> float:
     """The quantity ``text`` (such as "200 cSt") in SI base units, after checking its dimension.
 
@@ -39,6 +74,9 @@ def to_si(text: str, dimension: str) -> float:
         If pint cannot read ``text`` (the message says why), or its dimension is
         not ``dimension`` (a pint dimensionality such as "[length] ** 2 / [time]").
     """
+    key = f"{text}|{dimension}"
+    if key in _memo():
+        return _memo()[key]
     try:
         quantity = _registry().Quantity(text)
     # pint's parser raises many types (PintError, TokenError, AssertionError, ValueError).
@@ -48,4 +86,6 @@ def to_si(text: str, dimension: str) -> float:
     if not quantity.check(dimension):
         msg = f"has the unit {quantity.units} ({quantity.dimensionality})"
         raise UnitError(msg)
-    return float(quantity.to_base_units().magnitude)
+    value = float(quantity.to_base_units().magnitude)
+    _remember(key, value)
+    return value

@@ -1,0 +1,42 @@
+"""trajectory.png: drawn in a child process exactly as in this one, and a failure there is reported."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from dynamics.app.figures import FigureProcess, figure_png
+
+
+def _trajectory(n=200):
+    t = np.linspace(0.0, 2.0, n)
+    phi = np.pi + 0.3 * np.sin(5.0 * t)
+    kappa = 1.0 - 0.5 * np.exp(-t)
+    columns = {"t": t, "kappa": kappa, "phi": phi, "one_minus_kappa": 1.0 - kappa, "omega_a": np.cos(t),
+               "omega_b": np.sin(t), "x_b": 0.01 * t}
+    return SimpleNamespace(columns=columns, dimensionless=False, equations="full", forces="closed-form",
+                           status="completed", message="reached t_end = 2 s", groups={"s": 0.3, "mu": 1.2},
+                           tau=0.1)
+
+
+def test_the_child_draws_the_same_png_as_this_process():
+    trajectory = _trajectory()
+    with FigureProcess() as figures:
+        drawn = figures.png(trajectory)
+    assert drawn[:8] == b"\x89PNG\r\n\x1a\n"
+    assert drawn == figure_png(trajectory)
+
+
+def test_a_failure_in_the_child_is_reported_with_its_cause():
+    broken = _trajectory()
+    del broken.columns["x_b"]
+    with FigureProcess() as figures, pytest.raises(RuntimeError, match="drawing trajectory.png failed.*x_b"):
+        figures.png(broken)
+
+
+def test_leaving_without_a_trajectory_stops_the_child():
+    with FigureProcess() as figures:
+        child = figures._child
+    assert child.returncode is not None
