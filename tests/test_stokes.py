@@ -389,3 +389,27 @@ def test_cached_systems_stay_within_their_memory_bound(monkeypatch):
     # a system dropped and built again gives the same numbers
     assert stokes.stokes_resistance(1.0, 1.2, 0.3, **small).f_eps_per_eps_dot == first.f_eps_per_eps_dot
     stokes.clear_cache()
+
+
+def test_room_is_made_before_a_new_system_is_built(monkeypatch):
+    """The systems held while a new one is assembled and factorised, and the new one, fit CACHE_BYTES."""
+    from lubrication import stokes
+
+    stokes.clear_cache()
+    small = {"n_around": 64, "n_across": 4}
+    stokes.stokes_resistance(1.0, 1.2, 0.3, **small)
+    one = next(iter(stokes._CACHE.values())).nbytes
+    monkeypatch.setattr(stokes, "CACHE_BYTES", 1.5 * one)  # room for one system only
+    held = []
+    build = stokes._Discretisation
+
+    def recording(*key):
+        held.append(sum(d.nbytes for d in stokes._CACHE.values()))
+        return build(*key)
+
+    monkeypatch.setattr(stokes, "_Discretisation", recording)
+    for kappa in (0.4, 0.5):
+        stokes.stokes_resistance(1.0, 1.2, kappa, **small)
+    assert held == [0, 0]
+    assert len(stokes._CACHE) == 1
+    stokes.clear_cache()

@@ -8,7 +8,12 @@ would cost every one of them.
 
 from __future__ import annotations
 
+import ctypes
+
 __all__ = ["register", "register_corrections"]
+
+#: glibc's mallopt parameter for the size from which a block is mapped on its own (malloc.h).
+_M_MMAP_THRESHOLD = -3
 
 
 def register(subparsers) -> None:
@@ -36,7 +41,26 @@ def register_corrections(subparsers) -> None:
     p.set_defaults(run=_corrections)
 
 
+def _return_freed_blocks_to_the_system() -> None:
+    """Have glibc map every block of 1 MiB or more on its own, so that freeing it returns it.
+
+    The groups of checks run one after another in this process. A group's large
+    arrays (finite-element systems and their factors, long trajectories) are
+    freed when it ends, but glibc keeps blocks below a threshold it raises as
+    it goes (up to 32 MiB) inside its heap, where later small allocations pin
+    them. Measured on ``snail validate --quick``: a peak of 412 MB without this
+    and 394 MB with it (set before the checks' imports), for 1-2 s more.
+    Elsewhere than glibc, nothing changes.
+    """
+    try:
+        mallopt = ctypes.CDLL(None).mallopt
+    except (OSError, AttributeError):
+        return
+    mallopt(_M_MMAP_THRESHOLD, 1 << 20)
+
+
 def _validate(args) -> int:
+    _return_freed_blocks_to_the_system()
     from dynamics.app.folder import writable_folder
 
     from .suite import run_all
