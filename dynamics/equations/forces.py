@@ -243,29 +243,38 @@ def force_model(name: str, **options) -> ForceModel:
 def evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m) of the force model ``model`` (:attr:`ForceModel.data`)."""
     f_eps, f_chi, t_a = _stokes_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
-    rho, kappa_nodes, delta_nodes, table = model[9]
-    if rho > 0.0:
+    if model[9][0] > 0.0:  # rho: the first inertial correction
+        rho, kappa_nodes, delta_nodes, table = model[9]
         f_eps += _first_order_f_eps(kappa, (b - a) / a, a, rho, length, w_a, w_b, kappa_nodes, delta_nodes, table)
     return f_eps, f_chi, t_a
 
 
 @jit(inline="always")
 def _stokes_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    """The quasi-steady Stokes (or lubrication) part of :func:`evaluate`."""
-    kind, profile, sommerfeld, rule, points_per_cell, factors, cavitation, length_over_a, table, _ = model
+    """The quasi-steady Stokes (or lubrication) part of :func:`evaluate`.
+
+    The model's fields are read where a branch needs them, not unpacked at the
+    top: each array taken out of the tuple costs numba a reference-count
+    increment and decrement, some 60 calls a step for all of them.
+    """
+    kind = model[0]
     if kind == EXACT or kind == CLOSED:
         if kind == EXACT:
             r = stokes_exact_resistance(a, b - a, mu, kappa, omk)[:5]
         else:
             r = lubrication_resistance(a, b - a, mu, kappa, omk)
+        length_over_a = model[7]
         if math.isinf(length_over_a):
             ends = (1.0, 1.0, 1.0, 1.0, 1.0)
         else:
+            table = model[8]
             ends = finite_length_factor_kernel(kappa, omk, length_over_a, table[0], table[1], table[2], table[3])
+        factors = model[5]
         f_eps = length * factors[0] * ends[0] * r[0] * eps_dot
         f_chi = length * (factors[1] * ends[1] * r[1] * w_a + factors[3] * ends[3] * r[3] * w_b)
         t_a = length * (factors[2] * ends[2] * r[2] * w_a + factors[4] * ends[4] * r[4] * w_b)
         return f_eps, f_chi, t_a
+    profile, sommerfeld, rule, points_per_cell, cavitation = model[1], model[2], model[3], model[4], model[6]
     kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)

@@ -314,18 +314,20 @@ def to_cartesian(apparatus, y: np.ndarray) -> np.ndarray:
 
 
 @jit(inline="always")
-def central_differences(fun, t, y, args):
+def central_differences(fun, t, y, args, passive=0):
     """d(fun)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
     balanced at h ~ eps^(1/3) |y|: about 1e-11 relative, far below what the
-    implicit integrator's Newton iteration needs.
+    implicit integrator's Newton iteration needs. The last ``passive`` variables
+    enter no derivative (as X_b, which only records the distance rolled): their
+    columns are zero and cost no evaluation.
     """
     typical = args[2]
     n = y.size
-    jac = np.empty((n, n))
+    jac = np.zeros((n, n))
     yp = y.copy()
-    for j in range(n):
+    for j in range(n - passive):
         h = 6.0554544523933395e-06 * max(abs(y[j]), typical[j])  # eps^(1/3)
         yp[j] = y[j] + h
         up = fun(t, yp, args)
@@ -339,14 +341,14 @@ def central_differences(fun, t, y, args):
 
 @jit
 def jacobian(t, y, args):
-    """d(rhs)/dy by central differences (``central_differences``)."""
-    return central_differences(rhs, t, y, args)
+    """d(rhs)/dy by central differences (``central_differences``); X_b is passive."""
+    return central_differences(rhs, t, y, args, 1)
 
 
 @jit
 def polar_jacobian(t, y, args):
-    """d(polar_rhs)/dy by central differences (``central_differences``)."""
-    return central_differences(polar_rhs, t, y, args)
+    """d(polar_rhs)/dy by central differences (``central_differences``); X_b is passive."""
+    return central_differences(polar_rhs, t, y, args, 1)
 
 
 #: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
