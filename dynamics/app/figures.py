@@ -144,7 +144,7 @@ class FigureProcess:
     Use as a context manager; :meth:`png` sends a trajectory and returns
     :func:`figure_png` of it. Leaving the context without calling it stops
     the child. The child receives only the columns and labels the figure
-    reads (:data:`_FIELDS`), so it never imports the integrator.
+    reads, so it never imports the integrator.
     """
 
     def __enter__(self) -> Self:
