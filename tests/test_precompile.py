@@ -19,9 +19,8 @@ from dynamics.scenes import load_scene
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def test_the_precompiled_scenes_are_the_default_with_both_equations():
-    equations = {load_scene(None, overrides).model.equations for overrides in SCENES}
-    assert equations == {"full", "reduced"}
+def test_the_precompiled_scene_is_the_default_one():
+    assert [load_scene(None, overrides) for overrides in SCENES] == [load_scene()]
 
 
 def _index_stamp(data: bytes):
@@ -38,8 +37,8 @@ def test_the_wheel_ships_caches_numba_accepts_for_its_own_sources(tmp_path):
                    check=True, capture_output=True)
     with zipfile.ZipFile(next(tmp_path.glob("*.whl"))) as wheel:
         indexes = [PurePosixPath(n) for n in wheel.namelist() if n.endswith(".nbi")]
-        # the engine's driver and both models' right-hand sides, compiled for the default scene
-        for kernel in ("driver.advance", "full.rhs-", "reduced.rhs-"):
+        # the engine's driver and the full model's right-hand side, compiled for the default scene
+        for kernel in ("driver.advance", "full.rhs-"):
             assert any(i.name.startswith(kernel) for i in indexes), kernel
         for index in indexes:
             # numba loads an index only if its stamp is the sha256 of the source beside it
