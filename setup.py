@@ -6,6 +6,7 @@ build runs :mod:`dynamics.app.precompile` on the staged package, so that the
 cache ships with it and the first run after installing only loads it. numba
 keys the cache on each source file's content, the Python and numba versions
 and the CPU; where one differs at run time, it compiles again as before.
+``SNAIL_BUILD_KERNELS=0`` leaves the step out.
 """
 
 from __future__ import annotations
@@ -25,7 +26,9 @@ class BuildWithKernels(build_py):
 
     def run(self):
         super().run()
-        if self.editable_mode:  # an editable install compiles in the source tree on first use
+        # an editable install compiles in the source tree on first use; SNAIL_BUILD_KERNELS=0
+        # skips the step where only the source tree will run (the test command)
+        if self.editable_mode or os.environ.get("SNAIL_BUILD_KERNELS", "1") == "0":
             return
         staged = Path(self.build_lib).resolve()
         for stale in (*staged.rglob("*.nbi"), *staged.rglob("*.nbc")):
