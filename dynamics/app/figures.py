@@ -148,7 +148,7 @@ class FigureProcess:
     """
 
     def __enter__(self) -> Self:
-        # a session of its own: Ctrl-C at the terminal is the parent's to handle, which stops the child
+        # its own process group (setsid): Ctrl-C at the terminal reaches only the parent, which stops the child
         self._child = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
         return self

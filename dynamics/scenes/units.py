@@ -15,6 +15,7 @@ scene, after its first run) converts them without importing pint.
 from __future__ import annotations
 
 import json
+import math
 from decimal import Decimal
 from functools import cache
 from importlib.metadata import version
@@ -57,11 +58,13 @@ def _memo() -> dict:
 def _remember(key: str, value: float) -> None:
     from lubrication.files import write_json
 
+    if not math.isfinite(value):  # JSON has no inf; such a quantity is read by pint each time
+        return
     memo = _memo()
     memo[key] = value
     try:
         write_json(_memo_path(), {"pint": version("pint"), "si": memo})
-    except (OSError, ValueError):  # a read-only folder, or inf (not JSON): the next run imports pint
+    except OSError:  # a read-only folder: the next run imports pint
         pass
 
 
