@@ -26,13 +26,14 @@ class BuildWithKernels(build_py):
 
     def run(self):
         super().run()
-        # an editable install compiles in the source tree on first use; SNAIL_BUILD_KERNELS=0
-        # skips the step where only the source tree will run (the test command)
-        if self.editable_mode or os.environ.get("SNAIL_BUILD_KERNELS", "1") == "0":
+        if self.editable_mode:  # an editable install compiles in the source tree on first use
             return
         staged = Path(self.build_lib).resolve()
+        # setuptools reuses its staging folder: a previous build's kernels must not ship with this one
         for stale in (*staged.rglob("*.nbi"), *staged.rglob("*.nbc")):
             stale.unlink()
+        if os.environ.get("SNAIL_BUILD_KERNELS", "1") == "0":  # where only the source tree will run (tests)
+            return
         # numba must write beside the staged sources (no NUMBA_CACHE_DIR), and the
         # run must not touch the user's table cache
         env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
