@@ -11,6 +11,7 @@ from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
     ReducedParams,
     initial_state,
+    position_columns,
     reduced_jacobian,
     reduced_rhs,
     stretched_to_kappa,
@@ -434,6 +435,33 @@ def test_phi_is_continuous_and_starts_at_phi0():
     phi = traj.columns["phi"]
     assert phi[0] == pytest.approx(7.0, rel=1e-14)
     assert np.max(np.abs(np.diff(phi))) < math.pi
+
+
+def test_position_columns_are_numpys_unwrap_of_the_angle():
+    """The compiled pass against numpy: arctan2 unwrapped by numpy.unwrap, kappa from the stretched radius.
+
+    The angles jump by up to 3 pi between rows, and by exactly +-pi (so every
+    branch of the unwrapping is taken), rows at r = 0 report phi0, and the first row is put on phi0's turn.
+    Same operations in the same order: equal to a few ulp (libm against numpy's
+    own arctan2), and the turn count exactly.
+    """
+    rng = np.random.default_rng(3)
+    angle = np.cumsum(rng.uniform(-3.0 * math.pi, 3.0 * math.pi, 400))
+    r = rng.uniform(0.0, 1e3, angle.size)
+    r[[0, 57, 58, 301]] = 0.0
+    r[1::7] *= 1e-8
+    y = np.vstack([r * np.sin(angle), r * np.cos(angle), rng.normal(size=(3, angle.size))])
+    y[:2, 10:13] = [[0.0, 0.0, 0.0], [1.0, -2.0, 3.0]]  # jumps of exactly pi and -pi, numpy's boundary case
+    phi0 = 7.0
+    got = position_columns(y, phi0)
+    kappa, omk = stretched_to_kappa(np.hypot(y[0], y[1]))
+    phi = np.unwrap(np.where(r > 0.0, np.arctan2(y[0], y[1]), phi0))
+    phi += 2.0 * math.pi * round((phi0 - phi[0]) / (2.0 * math.pi))
+    np.testing.assert_allclose(got["kappa"], kappa, rtol=4e-16, atol=0.0)
+    np.testing.assert_allclose(got["one_minus_kappa"], omk, rtol=4e-16, atol=0.0)
+    np.testing.assert_allclose(got["phi"], phi, rtol=0.0, atol=1e-12)
+    assert got["phi"][0] == phi0
+    assert np.max(np.abs(np.diff(got["phi"]))) <= math.pi
 
 
 @pytest.mark.parametrize(("start", "words"), [

@@ -254,7 +254,9 @@ def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step
     fun, jac, events : compiled functions
         ``fun(t, y, args)`` -> dy/dt, shape (n,); ``jac(t, y, args)`` -> d fun / d y,
         shape (n, n); ``events(t, y, args)`` -> event values, shape (m,), m >= 0
-        (:func:`no_events` for none).
+        (:func:`no_events` for none). Called from compiled code with the functions
+        themselves, ``fun`` and ``events`` may return tuples of floats instead of
+        arrays, which saves an allocation per evaluation.
     args : any numba-typable value
         Passed through to the three functions.
     t0, t_end : float

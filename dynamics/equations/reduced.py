@@ -68,16 +68,19 @@ from lubrication.geometry import check_finite, check_range
 
 __all__ = [
     "EVENT_NAMES",
-    "ReducedParams",
     "STATE_NAMES",
+    "ReducedParams",
     "columns",
+    "event_values",
     "events",
-    "polar_rates",
     "initial_state",
     "jacobian",
+    "polar_rates",
+    "position_columns",
     "reduced_jacobian",
     "reduced_rhs",
     "rhs",
+    "rhs_values",
     "run_args",
     "stretched_to_kappa",
 ]
@@ -172,6 +175,27 @@ def initial_state(kappa0: float | None, phi0: float, omega_a0: float = 0.0, omeg
                      check_finite("x_b0", x_b0)])
 
 
+@jit(inline="always")
+def rhs_values(t, y, args):
+    """:func:`rhs` as a tuple of five floats, for compiled callers: a tuple needs no allocation.
+
+    The engine (:func:`dynamics.engine.driver.solve`) takes either form; called
+    directly from compiled code, as the sweeps' batch loop does, the tuple saves
+    an array's allocation and release at each of the some ten evaluations a step.
+    """
+    s, ups, mu_ = args[0], args[1], args[2]
+    xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
+    rho2 = 1.0 + xi * xi + eta * eta
+    rho = math.sqrt(rho2)
+    w = 0.5 * (omega_a + omega_b)
+    d = omega_b - omega_a
+    return (eta * w + 0.5 * xi * eta / rho2,
+            -xi * w - 1.0 - 0.5 * xi * xi / rho2,
+            (d * rho / 3.0 + xi / rho) / ups,
+            (s + 0.5 * xi / rho - d * rho / 6.0) / (mu_ * ups),
+            omega_b)
+
+
 @jit
 def rhs(t, y, args):
     """Right-hand side of (2.11a-d) in the stretched Cartesian variables (module docstring).
@@ -190,19 +214,7 @@ def rhs(t, y, args):
     -------
     ndarray, shape (5,)
     """
-    s, ups, mu_ = args[0], args[1], args[2]
-    xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
-    rho2 = 1.0 + xi * xi + eta * eta
-    rho = math.sqrt(rho2)
-    w = 0.5 * (omega_a + omega_b)
-    d = omega_b - omega_a
-    out = np.empty(5)
-    out[0] = eta * w + 0.5 * xi * eta / rho2
-    out[1] = -xi * w - 1.0 - 0.5 * xi * xi / rho2
-    out[2] = (d * rho / 3.0 + xi / rho) / ups
-    out[3] = (s + 0.5 * xi / rho - d * rho / 6.0) / (mu_ * ups)
-    out[4] = omega_b
-    return out
+    return np.array(rhs_values(t, y, args))
 
 
 @jit
@@ -284,27 +296,28 @@ def run_args(params: ReducedParams, *, gap_floor: float, max_reynolds: float = m
                      reynolds_per_rate[1], x_b_limit, x_b0, r_star], dtype=float)
 
 
-@jit
-def events(t, y, args):
-    """The event values of :data:`EVENT_NAMES` at state ``y``; each fires as it falls through (or rises to) 0."""
+@jit(inline="always")
+def event_values(t, y, args):
+    """:func:`events` as a tuple of five floats, for compiled callers (as :func:`rhs_values`)."""
     r = math.hypot(y[0], y[1])
     rho = math.sqrt(1.0 + r * r)
     omk = 1.0 / (rho * (rho + r))
-    g = np.empty(5)
-    g[0] = math.log(omk) - args[_LOG_FLOOR]
+    reynolds = args[_MAX_RE]
     if args[_MAX_RE] < math.inf and r > 0.0:
         # Re* of the flow relative to the line of centres (dynamics.equations.full.reduced_reynolds)
-        f = rhs(t, y, args)
+        f = rhs_values(t, y, args)
         phi_dot = (y[1] * f[0] - y[0] * f[1]) / (r * r)
         kappa = r / rho
         fade = kappa * kappa / (kappa * kappa + 1e-6)
-        g[1] = args[_MAX_RE] - fade * max(abs(y[2] - phi_dot) * args[_RE_A], abs(y[3] - phi_dot) * args[_RE_B])
-    else:
-        g[1] = args[_MAX_RE]
-    g[2] = args[_XB_LIMIT] - abs(y[4] - args[_XB0])
-    g[3] = y[0] * y[1]
-    g[4] = r - args[_R_STAR]
-    return g
+        reynolds -= fade * max(abs(y[2] - phi_dot) * args[_RE_A], abs(y[3] - phi_dot) * args[_RE_B])
+    return (math.log(omk) - args[_LOG_FLOOR], reynolds, args[_XB_LIMIT] - abs(y[4] - args[_XB0]), y[0] * y[1],
+            r - args[_R_STAR])
+
+
+@jit
+def events(t, y, args):
+    """The event values of :data:`EVENT_NAMES` at state ``y``; each fires as it falls through (or rises to) 0."""
+    return np.array(event_values(t, y, args))
 
 
 @jit
@@ -321,7 +334,7 @@ def polar_rates(y, args):
     for j in range(k):
         for i in range(5):
             state[i] = y[i, j]
-        f = rhs(0.0, state, args)
+        f = rhs_values(0.0, state, args)
         xi, eta = state[0], state[1]
         r2 = xi * xi + eta * eta
         if r2 > 0.0:
@@ -334,6 +347,42 @@ def polar_rates(y, args):
     return kappa_dot, phi_dot
 
 
+@jit
+def _position(y, phi0):
+    """kappa, 1 - kappa and phi of states with (xi, eta) = ``y`` (shape (2, k)), phi unwrapped as :func:`numpy.unwrap` does.
+
+    phi is phi0 where r = 0. One pass, compiled: a sweep's batch classifies every run from these.
+    """
+    k = y.shape[1]
+    kappa, omk, phi = np.empty(k), np.empty(k), np.empty(k)
+    shift = previous = 0.0
+    for j in range(k):
+        xi, eta = y[0, j], y[1, j]
+        r = math.hypot(xi, eta)
+        rho = math.sqrt(1.0 + r * r)
+        kappa[j] = r / rho
+        omk[j] = 1.0 / (rho * (rho + r))
+        angle = math.atan2(xi, eta) if r > 0.0 else phi0
+        jump = angle - previous
+        if j > 0 and abs(jump) >= math.pi:
+            # numpy.unwrap: a jump of at least pi becomes the equivalent jump in [-pi, pi]
+            wrapped = (jump + math.pi) % (2.0 * math.pi) - math.pi
+            if wrapped == -math.pi and jump > 0.0:
+                wrapped = math.pi
+            shift += wrapped - jump
+        previous = angle
+        phi[j] = angle + shift
+    return kappa, omk, phi
+
+
+def position_columns(y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
+    """kappa, 1 - kappa and phi of states ``y`` (shape (5, k)), as :func:`columns` gives them."""
+    kappa, omk, phi = _position(np.ascontiguousarray(y[:2], dtype=float), float(phi0))
+    if phi.size:
+        phi += 2.0 * math.pi * round((phi0 - phi[0]) / (2.0 * math.pi))
+    return {"kappa": kappa, "one_minus_kappa": omk, "phi": phi}
+
+
 def columns(y: np.ndarray, phi0: float, args: np.ndarray) -> dict[str, np.ndarray]:
     """kappa, 1 - kappa, phi, their rates, Omega_a, Omega_b, X_b of states ``y`` (shape (5, k)), scaled units.
 
@@ -342,12 +391,6 @@ def columns(y: np.ndarray, phi0: float, args: np.ndarray) -> dict[str, np.ndarra
     and starts at the turn of ``phi0``; where kappa = 0 exactly phi is undefined
     and ``phi0`` is reported. ``args`` are the run's (:func:`run_args`).
     """
-    r = np.hypot(y[0], y[1])
-    kappa, omk = stretched_to_kappa(r)
-    phi = np.where(r > 0.0, np.arctan2(y[0], y[1]), phi0)
-    if phi.size:
-        phi = np.unwrap(phi)
-        phi += 2.0 * math.pi * round((phi0 - phi[0]) / (2.0 * math.pi))
     kappa_dot, phi_dot = polar_rates(np.ascontiguousarray(y[:5]), args)
-    return {"kappa": kappa, "one_minus_kappa": omk, "phi": phi, "kappa_dot": kappa_dot, "phi_dot": phi_dot,
+    return {**position_columns(y, phi0), "kappa_dot": kappa_dot, "phi_dot": phi_dot,
             "omega_a": y[2], "omega_b": y[3], "x_b": y[4]}

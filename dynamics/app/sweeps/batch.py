@@ -125,12 +125,12 @@ def _classified(prepared: Problem, rows: tuple, code: int, stop: int) -> tuple[s
     t, y, kind, events = rows
     # simulate() drops the rows that are only a quarter turn, which keep phi continuous
     keep = ~((kind == EVENT) & (events == _TURN))
-    columns = reduced.columns(y, prepared.phi0, prepared.args)
+    columns = reduced.position_columns(y, prepared.phi0)  # the rates are not classified
     tau = prepared.tau
     trajectory = SimpleNamespace(  # what classify_point reads of a Trajectory
         columns={"t_tau": np.asarray(t, dtype=float)[keep], "phi": columns["phi"][keep],
                  "kappa": columns["kappa"][keep], "one_minus_kappa": columns["one_minus_kappa"][keep],
-                 "omega_b": columns["omega_b"][keep] / tau},
+                 "omega_b": y[3][keep] / tau},
         tau=tau, status=status, event=event)
     regime, numbers = classify_point(trajectory)
     return status, regime, numbers

@@ -2,9 +2,10 @@
 
 :func:`integrate_points` integrates point after point with the engine's driver
 (:func:`dynamics.engine.driver.solve`) called directly on the reduced model's
-:func:`~dynamics.equations.reduced.rhs`, :func:`~dynamics.equations.reduced.jacobian`
-and :func:`~dynamics.equations.reduced.events`, compiled into the loop: no Python
-per step or per point, and no calls through function pointers. It returns each
+:func:`~dynamics.equations.reduced.rhs_values`, :func:`~dynamics.equations.reduced.jacobian`
+and :func:`~dynamics.equations.reduced.event_values`, compiled into the loop: no Python
+per step or per point, no calls through function pointers, and the right-hand side
+and events as tuples, which unlike arrays need no allocation. It returns each
 run's rows as the driver makes them; :mod:`dynamics.app.sweeps.batch` sets the
 runs up and reads their rows.
 
@@ -65,7 +66,7 @@ def _loop(y0, args, t_end, rtol, terminal, direction, max_steps):
         try:
             # the model's functions through their module: named here, numba would pass them on as pointers to
             # Python objects, which it does not write to its disk cache
-            t, y, kind, event, state = solve(reduced.rhs, reduced.jacobian, reduced.events, args[i], 0.0,
+            t, y, kind, event, state = solve(reduced.rhs_values, reduced.jacobian, reduced.event_values, args[i], 0.0,
                                              y0[i], t_end[i], rtol[i], atol, 0.0, np.inf, max_steps, t_eval,
                                              True, terminal[i], direction)
             runs.append((t, y, kind, event))
