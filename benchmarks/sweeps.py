@@ -72,7 +72,7 @@ from benchmarks.reynolds import _machine
 from dynamics.app.sweeps import batch, run
 from dynamics.app.sweeps.plot import save_regime_map
 from dynamics.app.sweeps.point import classify_point, run_point
-from dynamics.app.sweeps.spec import load_sweep, overrides, parse_sweep, point_key
+from dynamics.app.sweeps.spec import load_sweep, parse_sweep, point_key
 from dynamics.app.sweeps.store import CSV_NAME, MANIFEST_NAME, read_rows
 from dynamics.equations import reduced
 from dynamics.scenes import parse_scene
@@ -162,7 +162,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
     cyrk = _cyrk_available()
     paths = [p for p in PATHS if cyrk or not p.startswith("CyRK")]
     events = _cyrk_events()
-    problems = [batch.problem(parse_scene(sweep.base, sweep.source, overrides(p))) for p in points]
+    problems = [batch.problem(parse_scene(sweep.base, sweep.source, p)) for p in points]
     assert all(p is not None for p in problems), "every point of the regime map is one the batch takes"
 
     def one(path: str, i: int):
@@ -186,7 +186,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
                 results[path][i] = one(path, i)
                 cpu[path][i].append(time.thread_time() - start)
             start = time.thread_time()
-            batch.problem(parse_scene(sweep.base, sweep.source, overrides(points[i])))
+            batch.problem(parse_scene(sweep.base, sweep.source, points[i]))
             parse[i].append(time.thread_time() - start)
         start = time.thread_time()
         rows = batch.run_batch(sweep.base, sweep.source, points)

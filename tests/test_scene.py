@@ -270,6 +270,20 @@ def test_bad_overrides_are_refused(override, words):
         assert word in str(info.value)
 
 
+def test_overrides_as_a_mapping_are_the_parsed_values_of_the_strings():
+    texts = ["initial.kappa=0.3", "fluid.nu=500 cSt", "model.forces=reynolds", "model.n=32",
+             "run.t_end_tau=100", "contact.kappa_star=0.99"]
+    values = {"initial.kappa": 0.3, "fluid.nu": "500 cSt", "model.forces": "reynolds", "model.n": 32,
+              "run.t_end_tau": 100, "contact.kappa_star": 0.99}
+    assert load_scene(overrides=values) == load_scene(overrides=texts)
+    with pytest.raises(SceneError, match="'kappa=0.3' must have the form section.key=value"):
+        load_scene(overrides={"kappa": 0.3})
+    with pytest.raises(SceneError, match="initial.kappa must be in"):
+        load_scene(overrides={"initial.kappa": 1.5})
+    with pytest.raises(SceneError, match="model.n must be an integer"):
+        load_scene(overrides={"model.n": "32"})  # a value is not parsed again
+
+
 def test_load_scene_reads_a_file_and_records_its_path(tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(resolved_toml(load_scene()), encoding="utf-8")

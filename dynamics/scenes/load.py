@@ -406,25 +406,34 @@ def _override_value(text: str) -> Any:
         return text
 
 
-def _apply_overrides(raw: dict[str, Any], overrides: Iterable[str]) -> None:
-    for text in [overrides] if isinstance(overrides, str) else overrides:
-        name, equals, value = str(text).partition("=")
+def _apply_overrides(raw: dict[str, Any], overrides: Iterable[str] | Mapping[str, Any]) -> None:
+    if isinstance(overrides, Mapping):
+        pairs = [(name, "", value) for name, value in overrides.items()]
+    else:
+        pairs = []
+        for text in [overrides] if isinstance(overrides, str) else overrides:
+            name, equals, value = str(text).partition("=")
+            if not equals:
+                name = ""  # (a malformed override)
+            pairs.append((name, text, _override_value(value.strip())))
+    for name, text, value in pairs:
         section, dot, key = name.strip().partition(".")
-        if not (equals and dot and section and key):
-            msg = f"override {text!r} must have the form section.key=value, e.g. 'initial.kappa=0.3'"
+        if not (dot and section and key):
+            shown = text or f"{name}={value!r}"
+            msg = f"override {shown!r} must have the form section.key=value, e.g. 'initial.kappa=0.3'"
             raise SceneError(msg)
         _check_key(section, key)
         table = raw.setdefault(section, {})
         if not isinstance(table, dict):
             raise _not_a_table(section, table)
         table.pop(_OTHER.get((section, key)), None)
-        table[key] = _override_value(value.strip())
+        table[key] = value
 
 
 # -- public functions ----------------------------------------------------------------
 
 def parse_scene(scene: str | Mapping[str, Any], source: str = "<string>",
-                overrides: Iterable[str] = ()) -> Scene:
+                overrides: Iterable[str] | Mapping[str, Any] = ()) -> Scene:
     """Read and validate a scene from TOML text or from a mapping of sections.
 
     Parameters
@@ -433,10 +442,12 @@ def parse_scene(scene: str | Mapping[str, Any], source: str = "<string>",
         TOML text, or a mapping ``{section: {key: value}}`` as ``tomllib`` returns it.
     source : str, optional
         Where the scene came from, kept in :attr:`Scene.source`.
-    overrides : iterable of str, optional
+    overrides : iterable of str, or mapping, optional
         ``"section.key=value"`` strings applied in order before validation. The
         value is read as a TOML value and, failing that, as a string, so
         ``"fluid.nu=200 cSt"`` and ``"model.equations=reduced"`` need no quotes.
+        A mapping ``{"section.key": value}`` gives the values as ``tomllib``
+        would return them, and is not parsed (a sweep's points).
         An override of one of two alternative keys (``m_a``/``rho_a``,
         ``sigma``/``kappa_star``, ``friction_angle``/``psi``,
         ``t_end``/``t_end_tau``) replaces the other.

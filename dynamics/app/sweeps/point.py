@@ -21,7 +21,7 @@ import numpy as np
 
 from dynamics.regime import REGIMES as _CLASSIFIED
 from dynamics.regime import classify
-from dynamics.app.sweeps.spec import overrides, point_key
+from dynamics.app.sweeps.spec import point_key
 from dynamics.scenes import parse_scene
 
 __all__ = ["REGIMES", "classify_point", "run_point"]
@@ -74,7 +74,7 @@ def run_point(base: Mapping[str, Any], point: Mapping[str, Any], source: str = "
     start = time.perf_counter()
     row = {**point, "point": point_key(point)}
     try:
-        trajectory = run_scene(parse_scene(base, source, overrides(point)))
+        trajectory = run_scene(parse_scene(base, source, point))
         regime, numbers = classify_point(trajectory)
         row.update(numbers, status=trajectory.status, regime=regime, steps=trajectory.steps,
                    reason=trajectory.message if regime == "failed" else "")

@@ -27,7 +27,7 @@ from pathlib import Path
 
 from dynamics.app.sweeps.batch import problem, run_batch
 from dynamics.app.sweeps.compiled import warm
-from dynamics.app.sweeps.spec import Sweep, SweepError, overrides, point_key
+from dynamics.app.sweeps.spec import Sweep, SweepError, point_key
 from dynamics.app.sweeps.store import CSV_NAME, MANIFEST_NAME, Table, check_manifest, read_rows
 from dynamics.scenes import parse_scene
 from lubrication.files import write_json
@@ -74,7 +74,7 @@ def _batches(todo: list[dict], workers: int, batch_size: int | None) -> list[lis
 def _warm_batch(sweep: Sweep, point: dict) -> None:
     """Compile (or load) the batch's loop here, once, before the workers load it, if the sweep's points take it."""
     try:
-        batched = problem(parse_scene(sweep.base, sweep.source, overrides(point))) is not None
+        batched = problem(parse_scene(sweep.base, sweep.source, point)) is not None
     except Exception:  # noqa: BLE001 - the point fails in its batch, with its reason
         return
     if batched:
