@@ -10,6 +10,7 @@ and every message names the parameter and its range in the same words.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -111,12 +112,16 @@ def field_key(field: dataclasses.Field) -> Key | None:
     return field.metadata.get("key")
 
 
+@functools.cache
+def _keyed_fields(cls: type) -> tuple[tuple[str, Key], ...]:
+    """(name, Key) of every keyed field of the dataclass ``cls``: looked up once per class."""
+    return tuple((f.name, spec) for f in dataclasses.fields(cls) if (spec := field_key(f)) is not None)
+
+
 def check_fields(obj: Any) -> None:
     """Check every keyed field of the dataclass instance ``obj`` and store the checked value.
 
     Raises ValueError naming the field and its allowed range, as the scene reader does.
     """
-    for f in dataclasses.fields(obj):
-        spec = field_key(f)
-        if spec is not None:
-            object.__setattr__(obj, f.name, spec.check(f.name, getattr(obj, f.name)))
+    for name, spec in _keyed_fields(type(obj)):
+        object.__setattr__(obj, name, spec.check(name, getattr(obj, name)))
