@@ -121,7 +121,7 @@ class ForceModel:
     def data(self) -> np.ndarray:
         """The model as :func:`evaluate` (and the equations of motion) take it: one float64 array.
 
-        The header (:data:`_HEADER` entries: the scalars, and where each array starts and its
+        The header (25 entries: the scalars, and where each array starts and its
         shape) is followed by the rule's five arrays, the two finite-length tables and the
         inertial correction's nodes and table, each flattened in C order.
         """
