@@ -70,6 +70,7 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from dynamics.app.sweeps import batch, run
+from dynamics.app.sweeps.compiled import integrate_points
 from dynamics.app.sweeps.plot import save_regime_map
 from dynamics.app.sweeps.point import classify_point, run_point
 from dynamics.app.sweeps.spec import load_sweep, parse_sweep, point_key
@@ -178,6 +179,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
     cpu = {path: [[] for _ in points] for path in paths}
     results = {path: [None] * len(points) for path in paths}
     parse = [[] for _ in points]
+    integration = [[] for _ in points]
     whole = []
     for _ in range(repeats):
         for i in rng.sample(range(len(points)), len(points)):
@@ -188,6 +190,10 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
             start = time.thread_time()
             batch.problem(parse_scene(sweep.base, sweep.source, points[i]))
             parse[i].append(time.thread_time() - start)
+            p = problems[i]
+            start = time.thread_time()
+            integrate_points([p.y0], [p.args], [p.t_end_tau], [p.rtol], [p.terminal], batch.DIRECTION)
+            integration[i].append(time.thread_time() - start)
         start = time.thread_time()
         rows = batch.run_batch(sweep.base, sweep.source, points)
         whole.append((time.thread_time() - start) / len(points))
@@ -215,6 +221,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
     return {"sample": sample, "repeats": repeats, "seed": seed, "paths": paths, "cyrk": cyrk,
             "regimes": {r: regimes.count(r) for r in sorted(set(regimes))}, "summary": summary, "ratios": ratios,
             "scene_building_ms": 1e3 * statistics.median(statistics.median(p) for p in parse),
+            "integration_ms": 1e3 * statistics.median(statistics.median(t) for t in integration),
             "cyrk_regime_agreement": agreement,
             "median_steps": {k: statistics.median(v) for k, v in steps.items()},
             "points": [{"point": point_key(p), **p, "regime": regimes[i],
@@ -319,7 +326,9 @@ def to_markdown(results: dict) -> str:
             + ", ".join(f"{n} {r}" for r, n in a["regimes"].items())
             + f"). Thread CPU time per trajectory, the median of {a['repeats']} interleaved repeats per point; "
             "`per point` and `batch` include building the scene "
-            f"(median {a['scene_building_ms']:.2f} ms) and classifying, CyRK the integration only. "
+            f"(median {a['scene_building_ms']:.2f} ms) and classifying, CyRK the integration only; the batch's "
+            f"integration alone (its compiled loop called for the one point) takes a median "
+            f"{a['integration_ms']:.2f} ms. "
             "The batch's rows equal the per-point rows at every point (regime, steps, numbers).", ""]
     regimes = list(a["regimes"])
     rows = []

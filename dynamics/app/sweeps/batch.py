@@ -42,11 +42,12 @@ from dynamics.equations import reduced
 from dynamics.equations.limits import LIMIT_EVENTS
 from dynamics.scenes import parse_scene
 
-__all__ = ["Problem", "problem", "run_batch"]
+__all__ = ["DIRECTION", "Problem", "problem", "run_batch"]
 
-# The reduced model's events as simulate() asks for them: the limits (terminal when the run stops at
-# them), the runaway, the quarter turns, the touch of rough walls (never, without contact).
-_DIRECTION = np.array([-1, -1, -1, 0, 1], dtype=np.int64)
+#: The directions of the reduced model's events (:data:`dynamics.equations.reduced.EVENT_NAMES`) as
+#: simulate() asks for them: the limits (terminal when the run stops at them), the runaway, the quarter
+#: turns, the touch of rough walls (never, without contact).
+DIRECTION = np.array([-1, -1, -1, 0, 1], dtype=np.int64)
 _TURN = reduced.EVENT_NAMES.index("turn")
 _SMALLEST_RTOL = 100 * np.finfo(float).eps  # simulate() refuses less
 
@@ -163,7 +164,7 @@ def run_batch(base: Mapping[str, Any], source: str, points: Sequence[Mapping[str
         try:
             runs, status, stop_event, steps, clock = integrate_points(
                 [p.y0 for p in problems], [p.args for p in problems], [p.t_end_tau for p in problems],
-                [p.rtol for p in problems], [p.terminal for p in problems], _DIRECTION)
+                [p.rtol for p in problems], [p.terminal for p in problems], DIRECTION)
         # A point fails alone: should the loop itself fail, every point runs on its own.
         except Exception:  # noqa: BLE001
             runs = None
