@@ -48,7 +48,7 @@ GROUPS = {
 
 
 # The groups that solve finite-element systems run first, while the process is smallest: every group
-# leaves compiled kernels and tables behind (150 MB after the first groups, 350 MB after all), and the
+# leaves compiled kernels and tables behind (the process holds 150 MB at the start, 350 MB after all), and the
 # peak is the largest finite-element solve (50-90 MB) on top of what is held by then. The report keeps
 # the order above.
 _RUN_FIRST = (corrections, model_choice_checks)

@@ -181,7 +181,7 @@ def rhs_values(t, y, args):
 
     The engine (:func:`dynamics.engine.driver.solve`) takes either form; called
     directly from compiled code, as the sweeps' batch loop does, the tuple saves
-    an array's allocation and release at each of the some ten evaluations a step.
+    an array's allocation and release at each of the about seven evaluations a step.
     """
     s, ups, mu_ = args[0], args[1], args[2]
     xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
@@ -349,9 +349,10 @@ def polar_rates(y, args):
 
 @jit
 def _position(y, phi0):
-    """kappa, 1 - kappa and phi of states with (xi, eta) = ``y`` (shape (2, k)), phi unwrapped as :func:`numpy.unwrap` does.
+    """kappa, 1 - kappa and phi of states with (xi, eta) = ``y`` (shape (2, k)).
 
-    phi is phi0 where r = 0. One pass, compiled: a sweep's batch classifies every run from these.
+    phi is unwrapped as :func:`numpy.unwrap` does, and is phi0 where r = 0. One
+    pass, compiled: a sweep's batch classifies every run from these.
     """
     k = y.shape[1]
     kappa, omk, phi = np.empty(k), np.empty(k), np.empty(k)
