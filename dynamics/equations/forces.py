@@ -9,7 +9,7 @@ compiled integrator and the equations are compiled once for all of them (the
 kind is told apart at run time, at the cost of one branch), and a call passes
 one array. Passed as the tuple of its eleven arrays, the model cost more at each
 call of the right-hand side (copying them and counting their references) than
-the closed forms themselves: 0.28 against 0.09 us a call, 11.9 against 6.3 ms
+the closed forms themselves: 0.28 against 0.09 us a call, 11.3 against 6.4 ms
 for the default scene's trajectory.
 
 Fluid inertia. ``closed_form(inertia=True, rho=...)`` and
