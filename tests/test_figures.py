@@ -40,3 +40,11 @@ def test_leaving_without_a_trajectory_stops_the_child():
     with FigureProcess() as figures:
         child = figures._child
     assert child.returncode is not None
+
+
+@pytest.mark.parametrize(("value", "label"), [(1e-6, "10\u207b\u2076"), (1.0, "10\u2070"), (100.0, "10\u00b2"),
+                                              (1e-12, "10\u207b\u00b9\u00b2"), (3e-3, "0.003"), (0.0, "")])
+def test_log_axis_labels_are_decades_in_superscript(value, label):
+    from dynamics.app.figures import _decade
+
+    assert _decade(value) == label

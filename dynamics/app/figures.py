@@ -11,8 +11,9 @@ says how the run ended.
 
 Drawing costs about 0.7 s, half of it importing matplotlib, which is longer
 than a default run takes once its kernels are compiled. :class:`FigureProcess`
-therefore imports matplotlib in a child process while the run computes, and
-draws there what it is sent.
+therefore imports matplotlib in a child process while the run computes, builds
+and renders the panels that do not depend on the run there, and then draws
+what it is sent into them.
 """
 
 from __future__ import annotations
@@ -37,6 +38,22 @@ _FIELDS = ("columns", "dimensionless", "equations", "forces", "status", "message
 _EQUATIONS = {"full": "full equations (2.1)-(2.4)", "reduced": "reduced equations (2.11)"}
 _FORCES = {"closed-form": "lubrication forces (2.5)-(2.7)", "reynolds": "Reynolds-equation forces",
            "stokes": "exact Stokes forces", "stokes-exact": "exact Stokes forces"}
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
+
+
+def _decade(value, _position=None) -> str:
+    """A log axis's label 10^k in plain text with superscript digits.
+
+    Matplotlib's default writes it in mathtext, parsed label by label: a fifth of the drawing time.
+    """
+    if not value > 0.0:
+        return ""
+    exponent = round(math.log10(value))
+    if not math.isclose(value, 10.0 ** exponent, rel_tol=1e-9):
+        return f"{value:.3g}"
+    return "10" + str(exponent).translate(_SUPERSCRIPT)
 
 
 def _title(trajectory) -> str:
@@ -67,18 +84,12 @@ def _angle_panel(ax, t, phi):
     ax.set_ylabel("phi - pi (deg)")
 
 
-def trajectory_figure(trajectory):
-    """A :class:`matplotlib.figure.Figure` of ``trajectory`` (no pyplot, no global state)."""
-    from matplotlib.collections import LineCollection
-    from matplotlib.colors import LogNorm
-    from matplotlib.figure import Figure
+def _frame() -> SimpleNamespace:
+    """The figure's panels before any data: what does not depend on the run.
 
-    c = trajectory.columns
-    dimless = trajectory.dimensionless
-    t = c["t"]
-    t_label = "t / tau" if dimless else "t (s)"
-    rate_unit = "1/tau" if dimless else "rad/s"
-    kappa, phi, gap = c["kappa"], c["phi"], c["one_minus_kappa"]
+    The child of :class:`FigureProcess` builds this while the run computes.
+    """
+    from matplotlib.figure import Figure
 
     # Fixed margins, not a layout engine: the labels are known, and constrained layout
     # would cost more than drawing the figure.
@@ -86,6 +97,40 @@ def trajectory_figure(trajectory):
     grid = fig.add_gridspec(4, 2, width_ratios=(1.0, 1.35), left=0.075, right=0.985, bottom=0.075,
                             top=0.865, wspace=0.2, hspace=0.12)
     ax_path = fig.add_subplot(grid[:, 0])
+    circle = np.linspace(0.0, 2.0 * math.pi, 400)
+    ax_path.plot(np.sin(circle), np.cos(circle), "k", lw=0.5)
+    ax_path.set_xlim(-1.08, 1.08)
+    ax_path.set_ylim(-1.08, 1.08)
+    ax_path.set_aspect("equal")
+    ax_path.set_xlabel("kappa sin(phi)  (down the slope)")
+    ax_path.set_ylabel("kappa cos(phi)  (up)")
+    ax_path.set_title("path of the inner centre A relative to B", fontsize=9)
+    ax_gap = fig.add_subplot(grid[0, 1])
+    ax_gap.set_yscale("log")
+    ax_gap.yaxis.set_major_formatter(_decade)
+    ax_gap.set_ylabel("1 - kappa")
+    ax_phi = fig.add_subplot(grid[1, 1], sharex=ax_gap)
+    ax_w = fig.add_subplot(grid[2, 1], sharex=ax_gap)
+    ax_x = fig.add_subplot(grid[3, 1], sharex=ax_gap)
+    for ax in (ax_gap, ax_phi, ax_w):
+        ax.tick_params(labelbottom=False)
+    return SimpleNamespace(fig=fig, path=ax_path, gap=ax_gap, phi=ax_phi, spins=ax_w, x_b=ax_x)
+
+
+def _plot(frame: SimpleNamespace, trajectory):
+    """Draw ``trajectory`` into the panels of :func:`_frame`; returns the figure."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import LogNorm
+    from matplotlib.ticker import FuncFormatter
+
+    c = trajectory.columns
+    dimless = trajectory.dimensionless
+    t = c["t"]
+    t_label = "t / tau" if dimless else "t (s)"
+    rate_unit = "1/tau" if dimless else "rad/s"
+    kappa, phi, gap = c["kappa"], c["phi"], c["one_minus_kappa"]
+    fig, ax_path = frame.fig, frame.path
+
     x, z = kappa * np.sin(phi), kappa * np.cos(phi)
     points = np.column_stack([x, z]).reshape(-1, 1, 2)
     segments = np.concatenate([points[:-1], points[1:]], axis=1)
@@ -95,40 +140,31 @@ def trajectory_figure(trajectory):
     lines = LineCollection(segments, array=np.clip(t[1:], t_low, None), cmap="viridis", linewidths=0.9,
                            norm=LogNorm(vmin=t_low, vmax=max(t_end, t_low * 10)))
     ax_path.add_collection(lines)
-    circle = np.linspace(0.0, 2.0 * math.pi, 400)
-    ax_path.plot(np.sin(circle), np.cos(circle), "k", lw=0.5)
     if t.size:
         ax_path.plot(x[0], z[0], "o", ms=4, color="C1", label="start")
         ax_path.plot(x[-1], z[-1], "s", ms=4, color="C3", label="end")
-    ax_path.set_xlim(-1.08, 1.08)
-    ax_path.set_ylim(-1.08, 1.08)
-    ax_path.set_aspect("equal")
-    ax_path.set_xlabel("kappa sin(phi)  (down the slope)")
-    ax_path.set_ylabel("kappa cos(phi)  (up)")
-    ax_path.set_title("path of the inner centre A relative to B", fontsize=9)
     ax_path.legend(fontsize=8, loc="upper right")
     bar = fig.colorbar(lines, ax=ax_path, orientation="horizontal", fraction=0.05, pad=0.1)
     bar.set_label(f"{t_label}, log scale")
     bar.minorticks_off()  # some fifty of them on a long run: a tenth of the drawing time
+    bar.formatter = FuncFormatter(_decade)
 
-    ax_gap = fig.add_subplot(grid[0, 1])
-    ax_gap.semilogy(t, np.maximum(gap, 1e-300), lw=0.8)
-    ax_gap.set_ylabel("1 - kappa")
-    ax_phi = fig.add_subplot(grid[1, 1], sharex=ax_gap)
-    _angle_panel(ax_phi, t, phi)
-    ax_w = fig.add_subplot(grid[2, 1], sharex=ax_gap)
-    ax_w.plot(t, c["omega_a"], lw=0.8, label="Omega_a (inner)")
-    ax_w.plot(t, c["omega_b"], lw=0.8, label="Omega_b (outer)")
-    ax_w.set_ylabel(f"spin ({rate_unit})")
-    ax_w.legend(fontsize=8)
-    ax_x = fig.add_subplot(grid[3, 1], sharex=ax_gap)
-    ax_x.plot(t, c["x_b"], color="C3", lw=0.8)
-    ax_x.set_ylabel("X_b / b" if dimless else "X_b (m)")
-    ax_x.set_xlabel(t_label)
-    for ax in (ax_gap, ax_phi, ax_w):
-        ax.tick_params(labelbottom=False)
+    frame.gap.plot(t, np.maximum(gap, 1e-300), lw=0.8)
+    _angle_panel(frame.phi, t, phi)
+    frame.spins.plot(t, c["omega_a"], lw=0.8, label="Omega_a (inner)")
+    frame.spins.plot(t, c["omega_b"], lw=0.8, label="Omega_b (outer)")
+    frame.spins.set_ylabel(f"spin ({rate_unit})")
+    frame.spins.legend(fontsize=8)
+    frame.x_b.plot(t, c["x_b"], color="C3", lw=0.8)
+    frame.x_b.set_ylabel("X_b / b" if dimless else "X_b (m)")
+    frame.x_b.set_xlabel(t_label)
     fig.suptitle(_title(trajectory), fontsize=9)
     return fig
+
+
+def trajectory_figure(trajectory):
+    """A :class:`matplotlib.figure.Figure` of ``trajectory`` (no pyplot, no global state)."""
+    return _plot(_frame(), trajectory)
 
 
 def figure_png(trajectory) -> bytes:
@@ -170,13 +206,21 @@ class FigureProcess:
 
 
 if __name__ == "__main__":  # the child of FigureProcess
-    # what trajectory_figure imports, imported now, while the parent runs
-    import matplotlib.collections
-    import matplotlib.colors
-    import matplotlib.figure  # noqa: F401
+    import os
 
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    # While the parent runs: the panels, rendered once so that the fonts, the tick
+    # machinery and the mathtext parser of the log axis are loaded before the data comes.
+    frame = _frame()
+    FigureCanvasAgg(frame.fig).draw()
     try:
         view = pickle.load(sys.stdin.buffer)
     except EOFError:  # the parent ended without a trajectory
         sys.exit(0)
-    sys.stdout.buffer.write(figure_png(view))
+    buf = io.BytesIO()
+    _plot(frame, view).savefig(buf, format="png", dpi=DPI)
+    sys.stdout.buffer.write(buf.getvalue())
+    sys.stdout.flush()
+    # The parent waits for this process to end: skip the interpreter's teardown of matplotlib, 0.1 s.
+    os._exit(0)
