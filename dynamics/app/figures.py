@@ -46,7 +46,8 @@ _SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u207
 def _decade(value, _position=None) -> str:
     """A log axis's label 10^k in plain text with superscript digits.
 
-    Matplotlib's default writes it in mathtext, parsed label by label: a fifth of the drawing time.
+    Matplotlib's default writes it in mathtext, parsed label by label: a tenth to a sixth
+    of the drawing time, as profiled.
     """
     if not value > 0.0:
         return ""
