@@ -22,7 +22,9 @@ import math
 
 import numpy as np
 
-__all__ = ["REGIMES", "classify"]
+from lubrication._jit import jit
+
+__all__ = ["REGIMES", "classify", "late_half"]
 
 REGIMES = ("runaway", "rocking", "sedimenting", "locked rolling", "sliding rolling", "steady rolling", "transient")
 
@@ -32,30 +34,64 @@ STEADY_SPREAD = 0.01
 _ROLLING = {1.0: "sliding rolling", 2.0: "locked rolling"}  # by contact phase code
 
 
+@jit
+def _late_half(t, phi, gap, omega_b):
+    """:func:`late_half`, compiled: a sweep classifies thousands of runs of about a thousand rows."""
+    late = min(np.searchsorted(t, 0.5 * t[-1]), t.shape[0] - 1)
+    phi_late = phi[late:]
+    # reversals of phi: sign changes of its increments (a zero increment counts as a sign of its own)
+    swings = np.count_nonzero(np.diff(np.sign(np.diff(phi_late))) != 0) if phi_late.size > 2 else 0
+    return (late, (phi[-1] - phi[late]) / (2.0 * math.pi), swings, np.ptp(phi_late), np.ptp(gap[late:]),
+            np.ptp(omega_b[late:]))
+
+
+def late_half(t, phi, gap, omega_b) -> tuple[int, float, int, float, float, float]:
+    """The second half of a run and the numbers read of it.
+
+    Parameters
+    ----------
+    t, phi, gap, omega_b : array_like, shape (k,), k >= 1
+        Time (increasing), the angle of the line of centres (unwrapped), 1 - kappa
+        and Omega_b, row by row.
+
+    Returns
+    -------
+    late : int
+        The first row at or after half the final time (the last row if none is).
+    turns : float
+        (phi at the end - phi at ``late``) / 2 pi.
+    reversals : int
+        Sign changes of phi's increments from ``late`` on.
+    phi_spread, gap_spread, omega_b_spread : float
+        Largest minus smallest value from ``late`` on.
+    """
+    late, turns, swings, phi_spread, gap_spread, omega_b_spread = _late_half(
+        *(np.ascontiguousarray(x, dtype=float) for x in (t, phi, gap, omega_b)))
+    return int(late), float(turns), int(swings), float(phi_spread), float(gap_spread), float(omega_b_spread)
+
+
 def classify(trajectory) -> tuple[str, dict]:
     """Regime of ``trajectory`` from its second half; returns (regime, evidence)."""
     c = trajectory.columns
-    t, phi, kappa = c["t_tau"], c["phi"], c["kappa"]
+    phi, kappa = c["phi"], c["kappa"]
     omega_b = c["omega_b"] * trajectory.tau
-    half = np.searchsorted(t, 0.5 * t[-1])
-    late = slice(min(half, len(t) - 1), None)
-    turns = float((phi[-1] - phi[late][0]) / (2 * math.pi))
-    swings = int(np.count_nonzero(np.diff(np.sign(np.diff(phi[late]))) != 0)) if phi[late].size > 2 else 0
-    growth = float(omega_b[-1] - omega_b[late][0])
+    late, turns, swings, phi_spread, gap_spread, omega_b_spread = late_half(c["t_tau"], phi, c["one_minus_kappa"],
+                                                                            omega_b)
+    growth = float(omega_b[-1] - omega_b[late])
     evidence = {"turns_of_phi_late": turns, "phi_reversals_late": swings, "final_kappa": float(kappa[-1]),
                 "omega_b_tau_growth_late": growth, "stop_event": trajectory.event}
-    if trajectory.event == "runaway" or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late][0])):
+    if trajectory.event == "runaway" or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late])):
         return "runaway", evidence
     phase = c.get("phase")
-    if phase is not None and phase[late].size and np.all(phase[late] == phase[-1]) and phase[-1] in _ROLLING:
-        spread = float(np.ptp(omega_b[late]) / max(abs(omega_b[-1]), 1e-300))
+    if phase is not None and phase[late:].size and np.all(phase[late:] == phase[-1]) and phase[-1] in _ROLLING:
+        spread = omega_b_spread / max(abs(float(omega_b[-1])), 1e-300)
         evidence["omega_b_relative_spread_late"] = spread
         if spread < STEADY_SPREAD:
             return _ROLLING[float(phase[-1])], evidence
-    gap = c["one_minus_kappa"][late]
-    spreads = {"one_minus_kappa_relative_spread_late": float(np.ptp(gap) / max(gap[-1], 1e-300)),
-               "phi_spread_late": float(np.ptp(phi[late])),
-               "omega_b_relative_spread_late": float(np.ptp(omega_b[late]) / max(abs(omega_b[-1]), 1e-300))}
+    gap = c["one_minus_kappa"]
+    spreads = {"one_minus_kappa_relative_spread_late": gap_spread / max(float(gap[-1]), 1e-300),
+               "phi_spread_late": phi_spread,
+               "omega_b_relative_spread_late": omega_b_spread / max(abs(float(omega_b[-1])), 1e-300)}
     evidence.update(spreads)
     if phase is None and omega_b[-1] != 0.0 and max(spreads.values()) < STEADY_SPREAD:
         return "steady rolling", evidence

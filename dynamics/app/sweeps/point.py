@@ -17,11 +17,9 @@ import time
 from collections.abc import Mapping
 from typing import Any
 
-import numpy as np
-
-from dynamics.regime import REGIMES as _CLASSIFIED
-from dynamics.regime import classify
 from dynamics.app.sweeps.spec import point_key
+from dynamics.regime import REGIMES as _CLASSIFIED
+from dynamics.regime import classify, late_half
 from dynamics.scenes import parse_scene
 
 __all__ = ["REGIMES", "classify_point", "run_point"]
@@ -47,16 +45,16 @@ def classify_point(trajectory) -> tuple[str, dict[str, Any]]:
         The keys of :data:`~dynamics.app.sweeps.store.NUMBERS` from ``t_end_tau`` to ``stop_event``.
     """
     c = trajectory.columns
-    t, phi = c["t_tau"], c["phi"]
+    t = c["t_tau"]
     omega_b = c["omega_b"] * trajectory.tau
     regime, evidence = classify(trajectory)
-    late = slice(min(int(np.searchsorted(t, 0.5 * t[-1])), len(t) - 1), None)
+    _, _, _, phi_spread, _, omega_b_spread = late_half(t, c["phi"], c["one_minus_kappa"], omega_b)
     final = float(omega_b[-1])
     numbers = {"t_end_tau": float(t[-1]), **{k: evidence[k] for k in _EVIDENCE},
                "omega_b_tau_final": final,
                # the spread, not the end-to-end change: a rocking Omega_b can end where it began
-               "omega_b_change_late": float(np.ptp(omega_b[late])) / abs(final) if final else math.inf,
-               "phi_range_late": float(np.ptp(phi[late]))}
+               "omega_b_change_late": omega_b_spread / abs(final) if final else math.inf,
+               "phi_range_late": phi_spread}
     return ("failed" if trajectory.status in ("failed", "interrupted") else regime), numbers
 
 

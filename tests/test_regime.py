@@ -1,0 +1,33 @@
+"""The numbers the regime is read from (dynamics.regime.late_half), against closed forms."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from dynamics.regime import late_half
+
+
+@pytest.mark.parametrize("cycles", [0.25, 3.0, 7.5])
+def test_reversals_turns_and_spreads_of_a_known_swing(cycles):
+    """phi = pi + 0.3 sin(2 pi cycles t / T) on [0, T]: its extrema in the second half are where
+    cycles t / T - 1/4 is a multiple of 1/2, strictly inside (T/2, T); phi's spread there is 0.6
+    as soon as a maximum and a minimum are both in it; a steady drift of a quarter turn shows as turns."""
+    t = np.linspace(0.0, 10.0, 20_001)
+    swing = 0.3 * np.sin(2.0 * math.pi * cycles * t / t[-1])
+    late, turns, reversals, phi_spread, gap_spread, omega_b_spread = late_half(
+        t, math.pi + swing, np.exp(-t), 2.0 + 0.5 * t)
+    assert t[late] == 5.0
+    extrema = [k for k in range(-2, 40) if cycles / 2 < k / 2 + 0.25 < cycles]
+    assert reversals == len(extrema)
+    assert turns == pytest.approx((swing[-1] - swing[late]) / (2.0 * math.pi), abs=1e-15)
+    if len(extrema) >= 2:
+        assert phi_spread == pytest.approx(0.6, rel=1e-6)  # sampled every 5e-4 T: within 1e-6 of the peaks
+    assert gap_spread == pytest.approx(math.exp(-5.0) - math.exp(-10.0), rel=1e-14)
+    assert omega_b_spread == pytest.approx(2.5, rel=1e-14)
+
+
+def test_a_run_of_one_row_is_all_second_half():
+    assert late_half([0.0], [1.0], [0.5], [0.0]) == (0, 0.0, 0, 0.0, 0.0, 0.0)
