@@ -162,22 +162,22 @@ def newton_tolerance(rtol):
 
 
 @jit(cache=False, inline="always")
-def _rms(x, scale):
-    """Root-mean-square of x / scale, x of shape (n,)."""
+def _rms(x, weight):
+    """Root-mean-square of x * weight, x of shape (n,); weight is 1 / (atol + rtol |y|)."""
     total = 0.0
     for j in range(x.shape[0]):
-        r = x[j] / scale[j]
+        r = x[j] * weight[j]
         total += r * r
     return math.sqrt(total) / math.sqrt(x.shape[0])
 
 
 @jit(cache=False, inline="always")
-def _rms_stages(x, scale):
-    """Root-mean-square of x / scale over all entries, x of shape (3, n), scale of each column."""
+def _rms_stages(x, weight):
+    """Root-mean-square of x * weight over all entries, x of shape (3, n), weight of each column."""
     total = 0.0
     for i in range(x.shape[0]):
         for j in range(x.shape[1]):
-            r = x[i, j] / scale[j]
+            r = x[i, j] * weight[j]
             total += r * r
     return math.sqrt(total) / math.sqrt(x.size)
 
@@ -240,11 +240,11 @@ def initial_step(fun, args, t0, y0, f0, t_end, max_step, rtol, atol, counters):
     """
     interval = t_end - t0
     n = y0.shape[0]
-    scale = np.empty(n)
+    weight = np.empty(n)
     for j in range(n):
-        scale[j] = atol[j] + abs(y0[j]) * rtol
-    d0 = _rms(y0, scale)
-    d1 = _rms(f0, scale)
+        weight[j] = 1.0 / (atol[j] + abs(y0[j]) * rtol)
+    d0 = _rms(y0, weight)
+    d1 = _rms(f0, weight)
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     h0 = min(h0, interval)
     y1 = np.empty(n)
@@ -255,7 +255,7 @@ def initial_step(fun, args, t0, y0, f0, t_end, max_step, rtol, atol, counters):
     counters[NFEV] += 1
     total = 0.0
     for j in range(n):
-        r = (f1[j] - f0[j]) / scale[j]
+        r = (f1[j] - f0[j]) * weight[j]
         total += r * r
     d2 = math.sqrt(total) / math.sqrt(n) / h0
     if not math.isfinite(d2):  # f is not finite at the trial point: start small
@@ -276,10 +276,11 @@ def predict_factor(h_abs, h_abs_old, error_norm, error_norm_old):
     """
     if error_norm == 0.0:
         return np.inf
+    # fourth roots as two square roots: pow took 3% of a sweep batch's time (perf)
     multiplier = 1.0
     if not (math.isnan(error_norm_old) or math.isnan(h_abs_old)):
-        multiplier = h_abs / h_abs_old * (error_norm_old / error_norm) ** 0.25
-    return min(1.0, multiplier) * error_norm ** -0.25
+        multiplier = h_abs / h_abs_old * math.sqrt(math.sqrt(error_norm_old / error_norm))
+    return min(1.0, multiplier) / math.sqrt(math.sqrt(error_norm))
 
 
 @jit(cache=False, inline="always")
@@ -296,7 +297,7 @@ def solve_collocation(fun, args, t, y, h, tol, s):
     m_complex = MU_COMPLEX / h
     w = s.work
     Z, W, F, dW, Z0, y_stage = w.Z, w.W, w.F, w.dW, w.Z0, w.y_stage
-    b_real, b_complex, scale = w.b_real, w.b_complex, w.scale
+    b_real, b_complex, weight = w.b_real, w.b_complex, w.weight
     for i in range(3):
         for j in range(n):
             Z[i, j] = Z0[i, j]
@@ -323,7 +324,7 @@ def solve_collocation(fun, args, t, y, h, tol, s):
             dW[0, j] = b_real[j]
             dW[1, j] = b_complex[j].real
             dW[2, j] = b_complex[j].imag
-        dw_norm = _rms_stages(dW, scale)
+        dw_norm = _rms_stages(dW, weight)
         if not math.isnan(dw_norm_old):
             rate = dw_norm / dw_norm_old
         if not math.isnan(rate) and (
@@ -372,7 +373,7 @@ def step(fun, jac, args, s):
     t, y, f = sc[T], s.y, s.f
     rtol, atol = sc[RTOL], s.atol
     w = s.work
-    Z0, Z, y_stage, scale, y_new, f_new = w.Z0, w.Z, w.y_stage, w.scale, w.y_new, w.f_new
+    Z0, Z, y_stage, weight, y_new, f_new = w.Z0, w.Z, w.y_stage, w.weight, w.y_new, w.f_new
     err, ze, lu_real, piv_real = w.err, w.ze, s.lu_real, s.piv_real
     min_step = 10.0 * abs(np.nextafter(t, np.inf) - t)
     h_abs, h_abs_old, error_norm_old = sc[H_ABS], sc[H_ABS_OLD], sc[ERR_OLD]
@@ -400,7 +401,8 @@ def step(fun, jac, args, s):
                 for j in range(n):
                     Z0[i, j] = 0.0
         for j in range(n):
-            scale[j] = atol[j] + abs(y[j]) * rtol
+            # reciprocals once a step: the norms then multiply (each Newton iteration took 3 n divisions)
+            weight[j] = 1.0 / (atol[j] + abs(y[j]) * rtol)
 
         converged, finite = False, True
         n_iter, rate = 0, np.nan
@@ -434,8 +436,8 @@ def step(fun, jac, args, s):
             err[j] = f[j] + ze[j]
         lu_solve(lu_real, piv_real, err)
         for j in range(n):
-            scale[j] = atol[j] + max(abs(y[j]), abs(y_new[j])) * rtol
-        error_norm = _rms(err, scale)
+            weight[j] = 1.0 / (atol[j] + max(abs(y[j]), abs(y_new[j])) * rtol)
+        error_norm = _rms(err, weight)
         safety = 0.9 * (2 * NEWTON_MAXITER + 1) / (2 * NEWTON_MAXITER + n_iter)
         if rejected and error_norm > 1.0:  # refine: one more filtering by the Newton matrix
             for j in range(n):
@@ -445,7 +447,7 @@ def step(fun, jac, args, s):
             for j in range(n):
                 err[j] = f_new[j] + ze[j]
             lu_solve(lu_real, piv_real, err)
-            error_norm = _rms(err, scale)
+            error_norm = _rms(err, weight)
         if not error_norm <= 1.0:
             if math.isnan(error_norm):
                 h_abs *= MIN_FACTOR

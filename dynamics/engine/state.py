@@ -89,11 +89,11 @@ State = namedtuple("State", [
 
 #: Scratch of the loop. Of a step (:func:`dynamics.engine.radau.step`): the stage
 #: quantities ``Z0`` (Newton's starting guess), ``Z``, ``W``, ``F``, ``dW`` (3, n) and
-#: ``scale``, ``y_new``, ``f_new``, ``err``, ``ze``, ``y_stage``, ``b_real`` (n,),
+#: ``weight``, ``y_new``, ``f_new``, ``err``, ``ze``, ``y_stage``, ``b_real`` (n,),
 #: ``b_complex`` (n,) complex. Of the events and output: ``y_dense``, ``y_event`` (n,),
 #: ``g_new``, ``g_root``, ``roots`` (m,) and ``which`` (m,) int.
 Work = namedtuple("Work", [
-    "Z0", "Z", "W", "F", "dW", "scale", "y_new", "f_new", "err", "ze", "y_stage", "b_real", "b_complex",
+    "Z0", "Z", "W", "F", "dW", "weight", "y_new", "f_new", "err", "ze", "y_stage", "b_real", "b_complex",
     "y_dense", "y_event", "g_new", "g_root", "roots", "which",
 ])
 
