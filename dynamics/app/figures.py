@@ -93,8 +93,9 @@ def _frame() -> SimpleNamespace:
     from matplotlib.figure import Figure
 
     # Fixed margins, not a layout engine: the labels are known, and constrained layout
-    # would cost more than drawing the figure.
-    fig = Figure(figsize=(10.5, 7.0))
+    # would cost more than drawing the figure. At the PNG's resolution from the start, so
+    # that rendering it reuses the renderer of any earlier rendering.
+    fig = Figure(figsize=(10.5, 7.0), dpi=DPI)
     grid = fig.add_gridspec(4, 2, width_ratios=(1.0, 1.35), left=0.075, right=0.985, bottom=0.075,
                             top=0.865, wspace=0.2, hspace=0.12)
     ax_path = fig.add_subplot(grid[:, 0])
@@ -168,11 +169,19 @@ def trajectory_figure(trajectory):
     return _plot(_frame(), trajectory)
 
 
+def _png(fig) -> bytes:
+    """``fig`` as the bytes of a PNG file.
+
+    zlib's fastest level: 9% larger than its default, and 8% less drawing time.
+    """
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI, pil_kwargs={"compress_level": 1})
+    return buf.getvalue()
+
+
 def figure_png(trajectory) -> bytes:
     """trajectory.png of ``trajectory``, as the bytes of the file."""
-    buf = io.BytesIO()
-    trajectory_figure(trajectory).savefig(buf, format="png", dpi=DPI)
-    return buf.getvalue()
+    return _png(trajectory_figure(trajectory))
 
 
 class FigureProcess:
@@ -211,17 +220,15 @@ if __name__ == "__main__":  # the child of FigureProcess
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    # While the parent runs: the panels, rendered once so that the fonts, the tick
-    # machinery and the mathtext parser of the log axis are loaded before the data comes.
+    # While the parent runs: the panels, rendered once at the figure's resolution, so that
+    # the fonts are loaded and the renderer, with its cache of text sizes, is ready.
     frame = _frame()
     FigureCanvasAgg(frame.fig).draw()
     try:
         view = pickle.load(sys.stdin.buffer)
     except EOFError:  # the parent ended without a trajectory
         sys.exit(0)
-    buf = io.BytesIO()
-    _plot(frame, view).savefig(buf, format="png", dpi=DPI)
-    sys.stdout.buffer.write(buf.getvalue())
+    sys.stdout.buffer.write(_png(_plot(frame, view)))
     sys.stdout.flush()
     # The parent waits for this process to end: skip the interpreter's teardown of matplotlib, 0.1 s.
     os._exit(0)
