@@ -180,7 +180,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
     results = {path: [None] * len(points) for path in paths}
     parse = [[] for _ in points]
     integration = [[] for _ in points]
-    whole = []
+    whole, in_batch = [], [[] for _ in points]
     for _ in range(repeats):
         for i in rng.sample(range(len(points)), len(points)):
             for path in rng.sample(paths, len(paths)):
@@ -197,6 +197,9 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
         start = time.thread_time()
         rows = batch.run_batch(sweep.base, sweep.source, points)
         whole.append((time.thread_time() - start) / len(points))
+        # each point's own clock inside the call (scene, integration, classification), as sweep.csv records it
+        for i, row in enumerate(rows):
+            in_batch[i].append(row["wall_time_s"])
     mismatches = [i for i in range(len(points)) if not _same_rows(results["batch"][i], results["per point"][i])
                   or not _same_rows(rows[i], results["per point"][i])]
     assert not mismatches, f"the batch's rows differ from the per-point rows at {len(mismatches)} points"
@@ -209,7 +212,12 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
                          "p90_ms": 1e3 * float(np.quantile(times, 0.9)),
                          "median_ms_by_regime": {regime: 1e3 * statistics.median(
                              [t for t, r in zip(times, regimes) if r == regime]) for regime in sorted(set(regimes))}}
-    summary["batch, whole sample in one call"] = {"mean_ms": 1e3 * statistics.median(whole)}
+    per_point_in_batch = [statistics.median(times) for times in in_batch]
+    summary["batch, whole sample in one call"] = {
+        "mean_ms": 1e3 * statistics.median(whole), "point_median_ms": 1e3 * statistics.median(per_point_in_batch),
+        "point_mean_ms": 1e3 * statistics.fmean(per_point_in_batch),
+        # the points' wall clocks against the call's thread CPU time: near 1 when nothing else took the core
+        "clocks_over_cpu": statistics.fmean(per_point_in_batch) / statistics.median(whole)}
     reference = per_point["batch"]
     ratios = {path: {"of_medians": summary[path]["median_ms"] / summary["batch"]["median_ms"],
                      "median_of_ratios": statistics.median(t / b for t, b in zip(per_point[path], reference)),
@@ -339,15 +347,22 @@ def to_markdown(results: dict) -> str:
                      f"{r['of_medians']:.2f}", f"{r['median_of_ratios']:.2f}", f"{r['of_means']:.2f}"])
     out += _table(["path", "median ms", "mean ms", "90% ms", *(f"median ms, {g}" for g in regimes),
                    "median / batch's", "median of ratios to batch", "mean / batch's"], rows)
-    whole = a["summary"]["batch, whole sample in one call"]["mean_ms"]
-    out += [f"The whole sample in one call of the batch: {whole:.2f} ms per trajectory (mean). Median steps: "
+    whole = a["summary"]["batch, whole sample in one call"]
+    out += [f"The whole sample in one call of the batch, as a sweep's task runs its points: {whole['mean_ms']:.2f} ms "
+            f"of thread CPU time per trajectory (mean). Each point's own clock inside that call (its scene, "
+            f"integration and classification, the `wall_time_s` of sweep.csv): median {whole['point_median_ms']:.2f} "
+            f"ms, mean {whole['point_mean_ms']:.2f} ms; the clocks add up to {whole['clocks_over_cpu']:.2f} of the "
+            "call's CPU time. A point run alone, as in the table, pays for caches that the points before it leave "
+            "warm in a batch. Median steps: "
             + ", ".join(f"{k} {v:g}" for k, v in a["median_steps"].items())
             + ("; CyRK's regimes agree with the engine's at "
                + ", ".join(f"{v:.1%} ({k})" for k, v in a["cyrk_regime_agreement"].items()) + " of the points"
                if a["cyrk_regime_agreement"] else "") + ".", "",
-            f"Goal: at most {GOALS['trajectory_cpu_ms']:g} ms CPU per trajectory (median): "
+            f"Goal: at most {GOALS['trajectory_cpu_ms']:g} ms CPU per trajectory (median). A point run alone: "
             + ("met" if a["summary"]["batch"]["median_ms"] <= GOALS["trajectory_cpu_ms"] else "not met")
-            + f" ({a['summary']['batch']['median_ms']:.2f} ms); the old scipy-based path took 56 ms.", ""]
+            + f" ({a['summary']['batch']['median_ms']:.2f} ms). A point inside the batch's call, by its own clock: "
+            + ("met" if whole["point_median_ms"] <= GOALS["trajectory_cpu_ms"] else "not met")
+            + f" ({whole['point_median_ms']:.2f} ms). The old scipy-based path took 56 ms.", ""]
     b = results["map"]
     out += [f"## (b) A map of {b['batch']['points']:,} points on {WORKERS} workers, end to end", "",
             f"{b['sweep']}: `run_sweep` on a local cluster of {WORKERS} single-threaded worker processes. Wall "
