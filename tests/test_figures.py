@@ -29,6 +29,16 @@ def test_the_child_draws_the_same_png_as_this_process():
     assert drawn == figure_png(trajectory)
 
 
+def test_a_run_that_never_left_t0_is_drawn():
+    """A run that failed at its first step has rows at t = 0 only: the log colour scale must still exist."""
+    for rows in (1, 2):
+        trajectory = _trajectory(rows)
+        trajectory.columns = {name: values[:1].repeat(rows) for name, values in trajectory.columns.items()}
+        with FigureProcess() as figures:
+            drawn = figures.png(trajectory)
+        assert drawn == figure_png(trajectory)
+
+
 def test_a_failure_in_the_child_is_reported_with_its_cause():
     broken = _trajectory()
     del broken.columns["x_b"]

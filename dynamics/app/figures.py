@@ -137,7 +137,9 @@ def _plot(frame: SimpleNamespace, trajectory):
     points = np.column_stack([x, z]).reshape(-1, 1, 2)
     segments = np.concatenate([points[:-1], points[1:]], axis=1)
     # colour by log time: the motion slows by decades as the gap closes
-    t_end = float(t[-1]) if t.size else 1.0
+    t_end = float(t[-1]) if t.size else 0.0
+    if not t_end > 0.0:  # a run that never left t = 0 (it failed at once): any positive scale
+        t_end = 1.0
     t_low = max(t_end * 1e-4, float(t[1]) if t.size > 1 else t_end * 1e-4)
     lines = LineCollection(segments, array=np.clip(t[1:], t_low, None), cmap="viridis", linewidths=0.9,
                            norm=LogNorm(vmin=t_low, vmax=max(t_end, t_low * 10)))
