@@ -64,9 +64,18 @@ def late_half(t, phi, gap, omega_b) -> tuple[int, float, int, float, float, floa
         Sign changes of phi's increments from ``late`` on.
     phi_spread, gap_spread, omega_b_spread : float
         Largest minus smallest value from ``late`` on.
+
+    Raises
+    ------
+    ValueError
+        If the columns are empty or of different lengths.
     """
-    late, turns, swings, phi_spread, gap_spread, omega_b_spread = _late_half(
-        *(np.ascontiguousarray(x, dtype=float) for x in (t, phi, gap, omega_b)))
+    columns = [np.ascontiguousarray(x, dtype=float) for x in (t, phi, gap, omega_b)]
+    # (compiled code does not check its indices: a short or empty column would be read past its end)
+    if not 1 <= columns[0].size == columns[1].size == columns[2].size == columns[3].size:
+        msg = f"late_half needs t, phi, gap and omega_b of one length, at least 1; got {[c.size for c in columns]}"
+        raise ValueError(msg)
+    late, turns, swings, phi_spread, gap_spread, omega_b_spread = _late_half(*columns)
     return int(late), float(turns), int(swings), float(phi_spread), float(gap_spread), float(omega_b_spread)
 
 

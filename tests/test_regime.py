@@ -31,3 +31,9 @@ def test_reversals_turns_and_spreads_of_a_known_swing(cycles):
 
 def test_a_run_of_one_row_is_all_second_half():
     assert late_half([0.0], [1.0], [0.5], [0.0]) == (0, 0.0, 0, 0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("columns", [([], [], [], []), ([0.0, 1.0], [1.0], [0.5, 0.5], [0.0, 0.0])])
+def test_empty_or_unequal_columns_are_refused(columns):
+    with pytest.raises(ValueError, match="one length, at least 1"):
+        late_half(*columns)
