@@ -5,14 +5,28 @@ arrays into one float64 array, which the compiled right-hand sides unpack. The
 forces through it must be those of the lubrication package's own functions,
 which take the same discretisation from their arguments rather than from the
 packed array: the same kernels, so equal to rounding (a few ulp, checked at
-rel 1e-12). The finite-length and inertial parts have their own tests
+rel 1e-12). Compiled code calls them through :func:`dynamics.equations.forces.evaluate`
+on :func:`~dynamics.equations.forces.compiled`, a first-class function per kind; that path
+must give the same numbers. The finite-length and inertial parts have their own tests
 (tests/test_ends_cli.py, tests/test_inertia_force_model.py).
 """
 
+import dataclasses
+
+import numba
 import numpy as np
 import pytest
 
-from dynamics.equations.forces import closed_form, reynolds, stokes_exact
+from dynamics.equations.forces import (
+    CAVITATING,
+    EXACT,
+    REYNOLDS,
+    closed_form,
+    compiled,
+    evaluate,
+    reynolds,
+    stokes_exact,
+)
 from lubrication.cavitation import cavitating_forces
 from lubrication.closed_form import closed_form_forces
 from lubrication.geometry import Annulus, Fluid, Motion
@@ -42,3 +56,39 @@ def test_packed_model_gives_the_lubrication_packages_forces(model, reference, ka
         got = np.array(model.forces(annulus, motion, FLUID).as_tuple())
         want = np.array(reference(annulus, motion, FLUID).as_tuple())
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-14 * np.max(np.abs(want)))
+
+
+@numba.njit(cache=False)
+def _through_evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    return evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
+
+
+MODELS = [closed_form(), stokes_exact(), reynolds(n=16), reynolds(n=32, cavitation="jfo", p_cav=1e5, p_ref=1.2e5),
+          closed_form(ends="open", length_over_a=13.0), stokes_exact(inertia=True, rho=960.0)]
+
+
+@pytest.mark.parametrize("model", MODELS, ids=lambda m: m.name)
+def test_compiled_code_gets_each_models_own_forces(model):
+    """Through the kind's kernel as a first-class function: the forces of the model, not of another kind."""
+    annulus = Annulus.from_kappa(0.0127, 0.0179, 0.8, length=0.1)
+    for motion in MOTIONS:
+        want = np.array(model.forces(annulus, motion, FLUID).as_tuple())
+        got = np.array(_through_evaluate(compiled(model), annulus.a, annulus.b, FLUID.mu, annulus.length,
+                                         annulus.kappa, annulus.one_minus_kappa, motion.eps_dot, motion.w_a,
+                                         motion.w_b))
+        np.testing.assert_array_equal(got, want)
+
+
+def test_every_model_is_one_type_for_compiled_code():
+    """One compiled right-hand side serves every force model: the argument it takes types alike."""
+    assert len({numba.typeof(compiled(m)) for m in MODELS}) == 1
+    assert len(_through_evaluate.overloads) <= 1
+
+
+@pytest.mark.parametrize("field", [{"inertia": (960.0, *stokes_exact(inertia=True, rho=960.0).inertia[1:])},
+                                   {"length_over_a": 13.0}])
+def test_a_reynolds_model_refuses_what_its_kernel_does_not_model(field):
+    for kind in (REYNOLDS, CAVITATING):
+        with pytest.raises(ValueError, match="closed forms and the exact Stokes forces only"):
+            dataclasses.replace(reynolds(), kind=kind, **field)
+    dataclasses.replace(stokes_exact(), kind=EXACT, **field)  # where it is modelled, accepted

@@ -85,6 +85,7 @@ from scipy.optimize import fsolve
 
 from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
+from dynamics.engine.compiled import Args
 from dynamics.equations import full
 from dynamics.equations.forces import ForceModel, evaluate
 from dynamics.equations.limits import Limits
@@ -116,7 +117,7 @@ def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model)
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).
 
     ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N. ``model`` is
-    :attr:`dynamics.equations.forces.ForceModel.data`.
+    :func:`dynamics.equations.full.model_arguments` of the force model.
     """
     a, b = p[0], p[1]
     eps = kappa_star * (b - a)
@@ -296,7 +297,7 @@ class _Run:
     def contact_args(self, locked: bool, sigma: float) -> tuple:
         numbers = np.array([*self.runaway, self.contact.kappa_star, self.contact.one_minus_kappa_star,
                             float(locked), sigma, self.tan_psi_hat])
-        return (self.p, self.model, self.contact_typical, numbers)
+        return Args((self.p, self.model, self.contact_typical, numbers))
 
     def free(self, y) -> Phase:
         stops = int(self.limits.stops)

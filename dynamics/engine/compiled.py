@@ -39,7 +39,7 @@ from lubrication._jit import jit
 from . import driver
 from .state import STATE_TYPE
 
-__all__ = ["Engine", "engine_for", "first_class", "function_types"]
+__all__ = ["Args", "Engine", "FirstClass", "engine_for", "first_class", "function_types"]
 
 #: The compiled ``driver.init`` and ``driver.advance`` for one type of ``args``.
 Engine = namedtuple("Engine", ["init", "advance"])
@@ -96,8 +96,8 @@ def engine_for(args, args_type=None) -> Engine:
     return engine
 
 
-class _Address(WrapperAddressProtocol):
-    """A compiled function as the driver takes it, its address and numba type looked up once.
+class FirstClass(WrapperAddressProtocol):
+    """A compiled function as a first-class function value, its address and numba type looked up once.
 
     Passed as a dispatcher, a model's function would be resolved to its
     compiled version and address at every call of the driver from Python
@@ -111,7 +111,7 @@ class _Address(WrapperAddressProtocol):
         cres = dispatcher.get_compile_result(signature)
         self._address = cres.library.get_pointer_to_function(cres.fndesc.llvm_cfunc_wrapper_name)
         self._signature = signature
-        self.numba_type = function_type
+        self._numba_type_ = function_type  # read by numba's dispatcher in C, and by typeof below
         self._dispatcher = dispatcher  # keeps the compiled code alive
 
     def __wrapper_address__(self):
@@ -121,11 +121,32 @@ class _Address(WrapperAddressProtocol):
         return self._signature
 
 
-@typeof_impl.register(_Address)
+@typeof_impl.register(FirstClass)
 def _typeof_address(value, context):
     # numba's own rule for such objects builds the type afresh from the signature at every call
     # of the driver: 0.5 ms each when ``args`` is a nested tuple
-    return value.numba_type
+    return value._numba_type_
+
+
+class Args(tuple):
+    """A tuple of ``args`` for compiled code, its numba type looked up once.
+
+    From Python, numba types a tuple element by element at every call, in C for
+    numbers and arrays. A tuple holding a :class:`FirstClass` (a force model's
+    kernel, :func:`dynamics.equations.forces.compiled`) took its Python path
+    instead, 10 us more a call than a tuple of arrays, which the dispatcher's C code
+    reads from ``_numba_type_`` without it.
+    """
+
+    def __new__(cls, items):
+        self = super().__new__(cls, items)
+        self._numba_type_ = numba.typeof(tuple(self))
+        return self
+
+
+@typeof_impl.register(Args)
+def _typeof_args(value, context):
+    return value._numba_type_
 
 
 _ADDRESSES: dict = {}
@@ -140,5 +161,6 @@ def first_class(fun, jac, events, args, args_type=None) -> tuple:
     found = _ADDRESSES.get(key)
     if found is None:
         fun_type, jac_type, events_type = function_types(key[3])
-        found = _ADDRESSES[key] = (_Address(fun, fun_type), _Address(jac, jac_type), _Address(events, events_type))
+        found = _ADDRESSES[key] = (FirstClass(fun, fun_type), FirstClass(jac, jac_type),
+                                  FirstClass(events, events_type))
     return found

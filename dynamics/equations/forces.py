@@ -3,11 +3,18 @@
 A :class:`ForceModel` is plain data: a kind and the arrays its kernel needs
 (empty arrays for what it does not use), so that the right-hand side of the
 equations of motion is compiled and calls :func:`evaluate` for any model without
-Python in the loop. The compiled functions take it packed into one float64
-array (:attr:`ForceModel.data`): every model then has the same type, so the
-compiled integrator and the equations are compiled once for all of them (the
-kind is told apart at run time, at the cost of one branch), and a call passes
-one array. Passed as the tuple of its eleven arrays, the model cost more at each
+Python in the loop. Compiled code takes a model as :func:`compiled` gives it: its
+data packed into one float64 array (:attr:`ForceModel.data`), and the compiled
+forces of its kind (:data:`KERNELS`) as a first-class function, called through a
+pointer. Every model then has the same numba type, so the compiled integrator and
+the equations are compiled once for all of them; and they carry none of the
+kernels' code, so a run loads only the kernel of its own model. With the four
+kernels compiled into every function that evaluates forces (a branch on the kind),
+each of the full model's right-hand sides and Jacobians was a 0.58 MB library for
+numba to load: a warm ``snail run`` of the default scene spent about 0.1 s more
+loading them (now 0.07-0.08 MB). The pointer costs the default scene's run about
+3% (8.0 against 7.8 ms, the least of 40 runs, interleaved processes on one core),
+and a call from Python about 4 us more, to unbox the function. Passed as the tuple of its eleven arrays, the model cost more at each
 call of the right-hand side (copying them and counting their references) than
 the closed forms themselves: 0.28 against 0.09 us a call, 11.3 against 6.4 ms
 for the default scene's trajectory.
@@ -36,6 +43,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+from numba import types
 
 from lubrication import _cavitation_kernels, _kernels
 from lubrication._jit import jit
@@ -47,12 +55,13 @@ from lubrication.inertia import _first_order_f_eps
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
 from lubrication.stokes_exact import stokes_exact_resistance
 
-__all__ = ["FORCE_MODELS", "ForceModel", "closed_form", "evaluate", "force_model", "reynolds", "stokes_exact"]
+__all__ = ["FORCE_MODELS", "KERNELS", "ForceModel", "closed_form", "compiled", "evaluate", "force_model", "reynolds",
+           "stokes_exact"]
 
 FORCE_MODELS = ("closed-form", "reynolds", "stokes-exact", "stokes")
 ENDS = ("infinite", "open")
 
-#: Kinds of force model, as :func:`evaluate` tells them apart.
+#: Kinds of force model, indices of :data:`KERNELS`.
 CLOSED, REYNOLDS, CAVITATING, EXACT = range(4)
 
 # The header of ForceModel.data: the scalars (factors: 5 entries, cavitation: 3), then where
@@ -117,9 +126,15 @@ class ForceModel:
     inertia: tuple = field(default_factory=lambda: (0.0, np.empty(0), np.empty(0), np.empty((0, 0, 0))))
     options: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        if self.kind not in (CLOSED, EXACT) and (self.inertia[0] > 0.0 or not math.isinf(self.length_over_a)):
+            msg = (f"{self.name}: the inertial correction and open ends are modelled with the closed forms and "
+                   "the exact Stokes forces only, not with the Reynolds solver's film")
+            raise ValueError(msg)
+
     @cached_property
     def data(self) -> np.ndarray:
-        """The model as :func:`evaluate` (and the equations of motion) take it: one float64 array.
+        """The model's numbers as its kernel (:data:`KERNELS`) takes them: one float64 array.
 
         The header (25 entries: the scalars, and where each array starts and its
         shape) is followed by the rule's five arrays, the two finite-length tables and the
@@ -144,8 +159,8 @@ class ForceModel:
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
         """The same evaluation from Python (for checks and single instants)."""
-        f = evaluate(self.data, annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
-                     annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
+        f = KERNELS[self.kind](self.data, annulus.a, annulus.b, fluid.mu, annulus.length, annulus.kappa,
+                               annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
         return FluidForces(*f, model=self.name)
 
 
@@ -298,50 +313,101 @@ def _inertia_tables(model):
             model[table:table + nk * nd * nc].reshape((nk, nd, nc)))
 
 
-@jit
-def evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    """f_eps, f_chi (N) and T_a (N m) of the force model ``model`` (:attr:`ForceModel.data`)."""
-    f_eps, f_chi, t_a = _stokes_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
-    rho = model[_RHO]
-    if rho > 0.0:  # the first inertial correction
-        kappa_nodes, delta_nodes, table = _inertia_tables(model)
-        f_eps += _first_order_f_eps(kappa, (b - a) / a, a, rho, length, w_a, w_b, kappa_nodes, delta_nodes, table)
+@jit(inline="always")
+def _scaled(model, r, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi, T_a of the five resistance coefficients ``r``, times the model's factors and ends."""
+    length_over_a = model[_LENGTH_OVER_A]
+    if math.isinf(length_over_a):
+        ends = (1.0, 1.0, 1.0, 1.0, 1.0)
+    else:
+        coef_eps, coef_chi = _length_tables(model)
+        ends = finite_length_factor_kernel(kappa, omk, length_over_a, coef_eps, coef_chi, model[_ZETA_MIN],
+                                           model[_X0])
+    factors = model[_FACTORS:_FACTORS + 5]
+    f_eps = length * factors[0] * ends[0] * r[0] * eps_dot
+    f_chi = length * (factors[1] * ends[1] * r[1] * w_a + factors[3] * ends[3] * r[3] * w_b)
+    t_a = length * (factors[2] * ends[2] * r[2] * w_a + factors[4] * ends[4] * r[4] * w_b)
     return f_eps, f_chi, t_a
 
 
 @jit(inline="always")
-def _stokes_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    """The quasi-steady Stokes (or lubrication) part of :func:`evaluate`."""
-    kind = int(model[_KIND])
-    if kind == EXACT or kind == CLOSED:
-        if kind == EXACT:
-            r = stokes_exact_resistance(a, b - a, mu, kappa, omk)[:5]
-        else:
-            r = lubrication_resistance(a, b - a, mu, kappa, omk)
-        length_over_a = model[_LENGTH_OVER_A]
-        if math.isinf(length_over_a):
-            ends = (1.0, 1.0, 1.0, 1.0, 1.0)
-        else:
-            coef_eps, coef_chi = _length_tables(model)
-            ends = finite_length_factor_kernel(kappa, omk, length_over_a, coef_eps, coef_chi, model[_ZETA_MIN],
-                                               model[_X0])
-        factors = model[_FACTORS:_FACTORS + 5]
-        f_eps = length * factors[0] * ends[0] * r[0] * eps_dot
-        f_chi = length * (factors[1] * ends[1] * r[1] * w_a + factors[3] * ends[3] * r[3] * w_b)
-        t_a = length * (factors[2] * ends[2] * r[2] * w_a + factors[4] * ends[4] * r[4] * w_b)
-        return f_eps, f_chi, t_a
-    profile, points_per_cell = int(model[_PROFILE]), int(model[_POINTS_PER_CELL])
+def _inertial_f_eps(model, a, b, length, kappa, w_a, w_b):
+    """The first inertial correction to f_eps (module docstring); zero for a model without it."""
+    rho = model[_RHO]
+    if not rho > 0.0:
+        return 0.0
+    kappa_nodes, delta_nodes, table = _inertia_tables(model)
+    return _first_order_f_eps(kappa, (b - a) / a, a, rho, length, w_a, w_b, kappa_nodes, delta_nodes, table)
+
+
+@jit
+def closed_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of a :data:`CLOSED` model: the closed forms (2.5)-(2.7)."""
+    f_eps, f_chi, t_a = _scaled(model, lubrication_resistance(a, b - a, mu, kappa, omk), length, kappa, omk,
+                                eps_dot, w_a, w_b)
+    return f_eps + _inertial_f_eps(model, a, b, length, kappa, w_a, w_b), f_chi, t_a
+
+
+@jit
+def exact_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of an :data:`EXACT` model: the exact 2-D Stokes forces."""
+    f_eps, f_chi, t_a = _scaled(model, stokes_exact_resistance(a, b - a, mu, kappa, omk)[:5], length, kappa,
+                                omk, eps_dot, w_a, w_b)
+    return f_eps + _inertial_f_eps(model, a, b, length, kappa, w_a, w_b), f_chi, t_a
+
+
+@jit
+def reynolds_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of a :data:`REYNOLDS` model: the Reynolds solver's full film."""
     kappa_g, omk_g = (kappa, omk) if model[_SOMMERFELD] != 0.0 else (0.0, 1.0)
     cpsi, spsi, vpsi, ppsi, wpsi = _rule(model)
     none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
-    if kind == CAVITATING:
-        n = spsi.size // points_per_cell
-        code, p_cav, p_ref = int(model[_CAVITATION]), model[_CAVITATION + 1], model[_CAVITATION + 2]
-        f_eps, f_chi, t_a, _ = _cavitation_kernels.cavitating_film_forces(
-            profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
-            cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell, none, none, 1.0, 0.0,
-            code, p_cav, p_ref, np.empty(n), np.empty(n), np.empty(n))
-        return f_eps, f_chi, t_a
-    return _kernels.film_forces(profile, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b,
-                                kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell,
+    return _kernels.film_forces(int(model[_PROFILE]), a, b, mu, length, kappa, omk, eps_dot, w_a, w_b,
+                                kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, int(model[_POINTS_PER_CELL]),
                                 none, none, 1.0, 0.0, none)
+
+
+@jit
+def cavitating_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of a :data:`CAVITATING` model: the Reynolds solver's ruptured film."""
+    kappa_g, omk_g = (kappa, omk) if model[_SOMMERFELD] != 0.0 else (0.0, 1.0)
+    cpsi, spsi, vpsi, ppsi, wpsi = _rule(model)
+    points_per_cell = int(model[_POINTS_PER_CELL])
+    n = spsi.size // points_per_cell
+    none = np.empty(0)
+    code, p_cav, p_ref = int(model[_CAVITATION]), model[_CAVITATION + 1], model[_CAVITATION + 2]
+    f_eps, f_chi, t_a, _ = _cavitation_kernels.cavitating_film_forces(
+        int(model[_PROFILE]), a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
+        cpsi, spsi, vpsi, ppsi, wpsi, points_per_cell, none, none, 1.0, 0.0,
+        code, p_cav, p_ref, np.empty(n), np.empty(n), np.empty(n))
+    return f_eps, f_chi, t_a
+
+
+#: The compiled forces of each kind of model, indexed by :data:`CLOSED`, :data:`REYNOLDS`, ...
+KERNELS = (closed_forces, reynolds_forces, cavitating_forces, exact_forces)
+#: Their numba type as a first-class function: (data, a, b, mu, L, kappa, 1 - kappa, eps', W_a, W_b) to (f_eps, f_chi, T_a).
+KERNEL_TYPE = types.FunctionType(types.UniTuple(types.float64, 3)(types.float64[::1], *[types.float64] * 9))
+_ADDRESSES: dict = {}
+
+
+def compiled(force_model: ForceModel) -> tuple:
+    """``force_model`` as compiled code takes it: its :attr:`ForceModel.data` and its kind's kernel.
+
+    The kernel (:data:`KERNELS`) is a first-class function, compiled or loaded from numba's
+    cache on first use; the pair is an :class:`~dynamics.engine.compiled.Args`.
+    """
+    # the engine's modules only when compiled code runs, not for a force at one instant
+    from dynamics.engine.compiled import Args, FirstClass
+
+    kind = force_model.kind
+    address = _ADDRESSES.get(kind)
+    if address is None:
+        address = _ADDRESSES[kind] = FirstClass(KERNELS[kind], KERNEL_TYPE)
+    return Args((force_model.data, address))
+
+
+@jit(inline="always")
+def evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """f_eps, f_chi (N) and T_a (N m) of ``model``, a force model as :func:`compiled` gives it."""
+    data, kernel = model
+    return kernel(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)

@@ -63,7 +63,8 @@ import math
 
 import numpy as np
 
-from dynamics.equations.forces import ForceModel, evaluate
+from dynamics.engine.compiled import Args
+from dynamics.equations.forces import ForceModel, compiled, evaluate
 from lubrication._jit import jit
 
 __all__ = [
@@ -455,7 +456,7 @@ def run_args(apparatus, force_model: ForceModel, *, gap_floor: float, max_reynol
     per_rate = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed: (dynamics.equations.full.reduced_reynolds)
     ev = np.array([math.log(gap_floor), max_reynolds, per_rate * ap.a, per_rate * ap.b,
                    2.0 * math.pi * ap.b * max_turns, x_b0, u_star])
-    return (params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev)
+    return Args((params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev))
 
 
 def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b, *,
@@ -523,5 +524,5 @@ def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.nda
 
 
 def model_arguments(force_model: ForceModel) -> tuple:
-    """The force model's data as :func:`rhs` takes them (``args[1]``)."""
-    return force_model.data
+    """The force model as :func:`rhs` takes it (``args[1]``): :func:`dynamics.equations.forces.compiled`."""
+    return compiled(force_model)
