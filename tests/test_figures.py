@@ -29,6 +29,24 @@ def test_the_child_draws_the_same_png_as_this_process():
     assert drawn == figure_png(trajectory)
 
 
+def test_a_trajectory_sent_early_is_drawn_while_this_process_works_on():
+    """send() returns before the child has drawn; png() then collects that figure, and only that one."""
+    trajectory = _trajectory()
+    with FigureProcess() as figures:
+        figures.send(trajectory)
+        with pytest.raises(ValueError, match="another trajectory"):
+            figures.png(_trajectory())
+        drawn = figures.png(trajectory)
+    assert drawn == figure_png(trajectory)
+
+
+def test_leaving_while_the_child_draws_stops_it():
+    with FigureProcess() as figures:
+        figures.send(_trajectory())
+        child = figures._child
+    assert child.returncode is not None
+
+
 def test_a_run_that_never_left_t0_is_drawn():
     """A run that failed at its first step has rows at t = 0 only: the log colour scale must still exist."""
     for rows in (1, 2):

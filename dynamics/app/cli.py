@@ -394,6 +394,8 @@ def _run_scene_drawing(args, figures) -> int:
         finally:
             if bar is not None:
                 bar.close()
+        if figures is not None:
+            figures.send(trajectory)  # drawn while the other outputs are written
         for passed in trajectory.info.get("limits_passed", []):
             print(f"snail run: warning: {passed['reason']}", file=sys.stderr)
         inertia = trajectory.info.get("inertia", {})

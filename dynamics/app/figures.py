@@ -23,6 +23,7 @@ import math
 import pickle
 import subprocess
 import sys
+import threading
 from types import SimpleNamespace
 from typing import Self
 
@@ -189,22 +190,46 @@ def figure_png(trajectory) -> bytes:
 class FigureProcess:
     """Draws the figure in a child process, started before the run so that matplotlib imports meanwhile.
 
-    Use as a context manager; :meth:`png` sends a trajectory and returns
-    :func:`figure_png` of it. Leaving the context without calling it stops
-    the child. The child receives only the columns and labels the figure
-    reads, so it never imports the integrator.
+    Use as a context manager. :meth:`send` hands the child a trajectory as soon
+    as the run ends, and a thread feeds it and collects its PNG while the caller
+    writes the other outputs; :meth:`png` returns :func:`figure_png` of it.
+    Leaving the context without calling them stops the child. The child
+    receives only the columns and labels the figure reads, so it never imports
+    the integrator.
     """
 
     def __enter__(self) -> Self:
         # its own process group (setsid): Ctrl-C at the terminal reaches only the parent, which stops the child
         self._child = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
                                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+        self._sent = self._drawing = self._output = None
         return self
 
-    def png(self, trajectory) -> bytes:
-        """figure_png(trajectory), drawn by the child."""
+    def send(self, trajectory) -> None:
+        """Start drawing ``trajectory``: the child has it, and a thread waits for the PNG."""
         view = SimpleNamespace(**{name: getattr(trajectory, name) for name in _FIELDS})
-        png, err = self._child.communicate(pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL))
+        payload = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
+        self._sent = trajectory
+        self._drawing = threading.Thread(target=self._communicate, args=(payload,), daemon=True)
+        self._drawing.start()
+
+    def _communicate(self, payload: bytes) -> None:
+        try:
+            self._output = self._child.communicate(payload)
+        except BaseException as err:  # noqa: BLE001 - raised again by png(), in the caller's thread
+            self._output = err
+
+    def png(self, trajectory) -> bytes:
+        """figure_png(trajectory), drawn by the child (sent now unless :meth:`send` sent it)."""
+        if self._drawing is None:
+            self.send(trajectory)
+        elif trajectory is not self._sent:
+            msg = "png() asked for another trajectory than the one sent to the child"
+            raise ValueError(msg)
+        self._drawing.join()
+        if isinstance(self._output, BaseException):
+            raise self._output
+        png, err = self._output
         if self._child.returncode != 0:
             lines = err.decode(errors="replace").strip().splitlines() or [f"exit status {self._child.returncode}"]
             msg = f"drawing trajectory.png failed: {lines[-1]}"  # the exception, without the child's traceback
@@ -214,7 +239,10 @@ class FigureProcess:
     def __exit__(self, *exc) -> None:
         if self._child.returncode is None:
             self._child.kill()
-            self._child.communicate()
+            if self._drawing is None:
+                self._child.communicate()
+        if self._drawing is not None:
+            self._drawing.join()
 
 
 if __name__ == "__main__":  # the child of FigureProcess
