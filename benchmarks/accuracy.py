@@ -161,8 +161,7 @@ def _evaluate_loop(calls, model, a, b, mu, length, kappa, omk):
 
 
 def _jit_batch(model: forcemodels.ForceModel, annulus: Annulus):
-    args = (forcemodels.compiled(model), annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa,
-            annulus.one_minus_kappa)
+    args = (model.data, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa, annulus.one_minus_kappa)
 
     def batch(calls):
         start = time.perf_counter()

@@ -276,8 +276,8 @@ class _FreeFull:
     both failed in the polar velocity, where the Cartesian one runs through.
     """
 
-    def __init__(self, apparatus, args, stops: int, rtol: float, polar: bool = True):
-        self.ap, self.args, self.polar = apparatus, args, polar
+    def __init__(self, apparatus, args, functions: full.ModelFunctions, stops: int, rtol: float, polar: bool = True):
+        self.ap, self.args, self.f, self.polar = apparatus, args, functions, polar
         typical = args[2]
         self.atol = rtol * typical
         # q_r and q_t are rates of |u|: 1/tau for the size of their absolute tolerance
@@ -292,13 +292,14 @@ class _FreeFull:
 
     def _cartesian(self, y, continues: bool = False) -> Phase:
         if not self.polar:
-            return Phase("free", full.rhs, full.jacobian, full.events, self.args, y, full.EVENT_NAMES,
+            return Phase("free", self.f.rhs, self.f.jacobian, full.events, self.args, y, full.EVENT_NAMES,
                          self.terminal[:5], (-1, -1, -1, 0, 1), self.atol, extra={"polar": False})
-        return Phase("free", full.rhs, full.jacobian, full.cartesian_events, self.args, y, full.CARTESIAN_EVENT_NAMES,
-                     self.terminal, (-1, -1, -1, 0, 1, 1), self.atol, continues=continues, extra={"polar": False})
+        return Phase("free", self.f.rhs, self.f.jacobian, full.cartesian_events, self.args, y,
+                     full.CARTESIAN_EVENT_NAMES, self.terminal, (-1, -1, -1, 0, 1, 1), self.atol, continues=continues,
+                     extra={"polar": False})
 
     def _polar(self, y, continues: bool = False) -> Phase:
-        return Phase("free", full.polar_rhs, full.polar_jacobian, full.polar_events, self.args, y,
+        return Phase("free", self.f.polar_rhs, self.f.polar_jacobian, full.polar_events, self.args, y,
                      full.POLAR_EVENT_NAMES, self.terminal, (-1, -1, -1, 0, 1, -1), self.polar_atol,
                      continues=continues, extra={"polar": True})
 
@@ -395,7 +396,8 @@ class _Run:
         y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                                 initial.omega_a, initial.omega_b, one_minus_kappa=initial.gap)
         _check_reynolds_at_start(full.events(0.0, y0, args), limits)
-        free = _FreeFull(ap, args, int(limits.stops), self.rtol, polar=model.kind != CAVITATING)
+        free = _FreeFull(ap, args, full.model_functions(model.kind), int(limits.stops), self.rtol,
+                         polar=model.kind != CAVITATING)
         fields = run_phases(free.phase(y0), free.transition, free.columns, self.t_end, phi0=initial.phi,
                             method=self.method, rtol=self.rtol, t_eval=self.t_eval, steps=True,
                             max_steps=self.max_steps, progress=self.progress)

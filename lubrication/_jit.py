@@ -9,9 +9,11 @@ plain Python, for coverage and debugging.
 
 from __future__ import annotations
 
+import types
+
 from numba import njit
 
-__all__ = ["JIT_OPTIONS", "jit"]
+__all__ = ["JIT_OPTIONS", "jit", "specialise"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
 JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False}
@@ -23,3 +25,21 @@ def jit(func=None, **extra):
     if func is None:
         return njit(**options)
     return njit(**options)(func)
+
+
+def specialise(template, name: str, **bound):
+    """:func:`jit` of a copy of the plain function ``template`` in which the globals ``bound`` are given.
+
+    Compiled functions a template calls through a global name (a force kernel, say)
+    are compiled into its code: a copy per choice carries only the code it calls.
+    Numba files a compiled function under its qualified name, so each copy is named
+    ``<template>_<name>`` and keeps its own entry in the disk cache; the cache is
+    keyed on the template's source file, so ``name`` must say what ``bound`` holds.
+    """
+    namespace = {**template.__globals__, **bound}
+    copy = types.FunctionType(template.__code__, namespace, f"{template.__name__}_{name}", template.__defaults__,
+                              template.__closure__)
+    copy.__qualname__ = f"{template.__qualname__}_{name}"
+    copy.__module__ = template.__module__
+    copy.__doc__ = template.__doc__
+    return jit(copy)

@@ -5,25 +5,24 @@ arrays into one float64 array, which the compiled right-hand sides unpack. The
 forces through it must be those of the lubrication package's own functions,
 which take the same discretisation from their arguments rather than from the
 packed array: the same kernels, so equal to rounding (a few ulp, checked at
-rel 1e-12). Compiled code calls them through :func:`dynamics.equations.forces.evaluate`
-on :func:`~dynamics.equations.forces.compiled`, a first-class function per kind; that path
-must give the same numbers. The finite-length and inertial parts have their own tests
+rel 1e-12). The equations of motion are compiled with each kind's kernel
+(:func:`dynamics.equations.full.model_functions`) and, for any kind, with
+:func:`dynamics.equations.forces.evaluate`: the same numbers. The finite-length and inertial parts have their own tests
 (tests/test_ends_cli.py, tests/test_inertia_force_model.py).
 """
 
 import dataclasses
 
-import numba
 import numpy as np
 import pytest
 
+from dynamics.apparatus import preset
+from dynamics.equations import full
 from dynamics.equations.forces import (
     CAVITATING,
     EXACT,
     REYNOLDS,
     closed_form,
-    compiled,
-    evaluate,
     reynolds,
     stokes_exact,
 )
@@ -58,31 +57,24 @@ def test_packed_model_gives_the_lubrication_packages_forces(model, reference, ka
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-14 * np.max(np.abs(want)))
 
 
-@numba.njit(cache=False)
-def _through_evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    return evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
-
-
 MODELS = [closed_form(), stokes_exact(), reynolds(n=16), reynolds(n=32, cavitation="jfo", p_cav=1e5, p_ref=1.2e5),
           closed_form(ends="open", length_over_a=13.0), stokes_exact(inertia=True, rho=960.0)]
 
 
 @pytest.mark.parametrize("model", MODELS, ids=lambda m: m.name)
-def test_compiled_code_gets_each_models_own_forces(model):
-    """Through the kind's kernel as a first-class function: the forces of the model, not of another kind."""
-    annulus = Annulus.from_kappa(0.0127, 0.0179, 0.8, length=0.1)
-    for motion in MOTIONS:
-        want = np.array(model.forces(annulus, motion, FLUID).as_tuple())
-        got = np.array(_through_evaluate(compiled(model), annulus.a, annulus.b, FLUID.mu, annulus.length,
-                                         annulus.kappa, annulus.one_minus_kappa, motion.eps_dot, motion.w_a,
-                                         motion.w_b))
-        np.testing.assert_array_equal(got, want)
-
-
-def test_every_model_is_one_type_for_compiled_code():
-    """One compiled right-hand side serves every force model: the argument it takes types alike."""
-    assert len({numba.typeof(compiled(m)) for m in MODELS}) == 1
-    assert len(_through_evaluate.overloads) <= 1
+def test_the_equations_compiled_for_a_kind_are_those_for_any_kind(model):
+    """A run takes the functions compiled with its kind's kernel only: the numbers of the ones for any kind."""
+    ap = preset("steel")
+    args = full.run_args(ap, model, gap_floor=1e-9)
+    own = full.model_functions(model.kind)
+    rng = np.random.default_rng(3)
+    for _ in range(3):
+        y = full.initial_state(ap, rng.uniform(0.2, 0.95), rng.uniform(0, 6), 0.1, 0.3, 2.0, -1.0)
+        np.testing.assert_array_equal(own.rhs(0.0, y, args), full.rhs(0.0, y, args))
+        np.testing.assert_array_equal(own.jacobian(0.0, y, args), full.jacobian(0.0, y, args))
+        polar = full.to_polar(ap, y)
+        np.testing.assert_array_equal(own.polar_rhs(0.0, polar, args), full.polar_rhs(0.0, polar, args))
+        np.testing.assert_array_equal(own.polar_jacobian(0.0, polar, args), full.polar_jacobian(0.0, polar, args))
 
 
 @pytest.mark.parametrize("field", [{"inertia": (960.0, *stokes_exact(inertia=True, rho=960.0).inertia[1:])},

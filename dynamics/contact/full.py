@@ -78,23 +78,26 @@ in contact 1, 1/tau, 1/tau, 1/tau and b for chi, chi', Omega_a, Omega_b, X_b).
 
 from __future__ import annotations
 
+import functools
 import math
+from collections import namedtuple
 
 import numpy as np
 from scipy.optimize import fsolve
 
 from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
-from dynamics.engine.compiled import Args
 from dynamics.equations import full
-from dynamics.equations.forces import ForceModel, evaluate
+from dynamics.equations.forces import KERNELS, KIND_NAMES, ForceModel, evaluate
 from dynamics.equations.limits import Limits
-from lubrication._jit import jit
+from lubrication._jit import specialise
 
 __all__ = [
     "LOCKED_EVENTS",
     "SLIDING_EVENTS",
+    "ContactFunctions",
     "contact_events",
+    "contact_functions",
     "contact_jacobian",
     "contact_rates",
     "contact_rhs",
@@ -111,21 +114,22 @@ def friction_coefficient(apparatus, contact: ContactParams) -> float:
 
 
 # -- contact forces and accelerations (jitted) -------------------------------------
+# Templates: FORCES (a force kernel), CONTACT_RATES and CONTACT_RHS are bound, and the copies
+# compiled, by _compiled below (contact_rates, ..., for any kind; contact_functions).
 
-@jit
-def contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model):
+def _contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model):
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).
 
     ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N. ``model`` is
-    :func:`dynamics.equations.full.model_arguments` of the force model.
+    :attr:`dynamics.equations.forces.ForceModel.data`.
     """
     a, b = p[0], p[1]
     eps = kappa_star * (b - a)
     chi, chi_dot, omega_a, omega_b = y[0], y[1], y[2], y[3]
     ex, ez = math.sin(chi), math.cos(chi)
     cx, cz = ez, -ex
-    f_eps, f_chi, t_a = evaluate(model, a, b, p[3], p[2], kappa_star, omk_star, 0.0, omega_a - chi_dot,
-                                 omega_b - chi_dot)
+    f_eps, f_chi, t_a = FORCES(model, a, b, p[3], p[2], kappa_star, omk_star, 0.0,  # noqa: F821
+                               omega_a - chi_dot, omega_b - chi_dot)
     frame_eps, frame_chi = full.frame_force(p, eps, 0.0, chi_dot, omega_a, omega_b)
     fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
     gravity = full.gravity_response(p)
@@ -231,11 +235,10 @@ SLIDING_EVENTS = ("runaway", "lift", "stick")
 _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)
 
 
-@jit
-def contact_rhs(t, y, args):
+def _contact_rhs(t, y, args):
     """d/dt (chi, chi', Omega_a, Omega_b, X_b) in contact (SI); ``args`` from :func:`_Run.contact_args`."""
     p, model, c = args[0], args[1], args[3]
-    r = contact_rates(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)
+    r = CONTACT_RATES(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)  # noqa: F821
     out = np.empty(5)
     out[0] = y[1]
     out[1] = r[0]
@@ -245,21 +248,19 @@ def contact_rhs(t, y, args):
     return out
 
 
-@jit
-def contact_jacobian(t, y, args):
+def _contact_jacobian(t, y, args):
     """d(contact_rhs)/dy by central differences (:func:`dynamics.equations.full.central_differences`)."""
-    return full.central_differences(contact_rhs, t, y, args)
+    return full.central_differences(CONTACT_RHS, t, y, args)  # noqa: F821
 
 
-@jit
-def contact_events(t, y, args):
+def _contact_events(t, y, args):
     """Locked: :data:`LOCKED_EVENTS`; sliding: :data:`SLIDING_EVENTS` (the fourth component is unused).
 
     The runaway; lift-off as N falls through 0; locked, the friction bound
     |F| = tan(psi_hat) N on either side; sliding, the slip reaching 0.
     """
     p, model, c = args[0], args[1], args[3]
-    r = contact_rates(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)
+    r = CONTACT_RATES(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)  # noqa: F821
     n_force, f_force = r[3], r[4]
     g = np.empty(4)
     g[0] = c[_XB_LIMIT] - abs(y[4] - c[_XB0])
@@ -274,6 +275,31 @@ def contact_events(t, y, args):
     return g
 
 
+#: The contact phases' compiled functions, for one force kernel.
+ContactFunctions = namedtuple("ContactFunctions", ["rates", "rhs", "jacobian", "events"])
+
+
+def _compiled(forces, name: str) -> ContactFunctions:
+    """The templates above compiled with the force kernel ``forces``, filed under ``name``."""
+    rates = specialise(_contact_rates, name, FORCES=forces)
+    rhs = specialise(_contact_rhs, name, CONTACT_RATES=rates)
+    return ContactFunctions(rates, rhs, specialise(_contact_jacobian, name, CONTACT_RHS=rhs),
+                            specialise(_contact_events, name, CONTACT_RATES=rates))
+
+
+# For any force model, the kind told apart at run time: these carry every kernel's code.
+contact_rates, contact_rhs, contact_jacobian, contact_events = _compiled(evaluate, "any")
+
+
+@functools.cache
+def contact_functions(kind: int) -> ContactFunctions:
+    """The contact phases' functions compiled for the force models of ``kind`` only.
+
+    As :func:`dynamics.equations.full.model_functions`: what a run takes.
+    """
+    return _compiled(KERNELS[kind], KIND_NAMES[kind])
+
+
 class _Run:
     """What the phases of one full-model contact run share."""
 
@@ -282,6 +308,8 @@ class _Run:
         self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
         self.p = full.params_array(apparatus, frame_terms)
         self.model = full.model_arguments(force_model)
+        self.functions = contact_functions(force_model.kind)
+        self.free_functions = full.model_functions(force_model.kind)
         self.tan_psi_hat = friction_coefficient(apparatus, contact)
         self.free_args = full.run_args(apparatus, force_model, gap_floor=limits.gap_floor,
                                        max_reynolds=limits.reynolds, max_turns=limits.max_turns,
@@ -291,27 +319,30 @@ class _Run:
         self.runaway = np.array([2.0 * math.pi * apparatus.b * limits.max_turns, 0.0])
 
     def rates(self, y, locked: bool, sigma: float) -> np.ndarray:
-        return contact_rates(np.asarray(y, float), self.p, self.contact.kappa_star, self.contact.one_minus_kappa_star,
-                             locked, sigma, self.tan_psi_hat, self.model)
+        return self.functions.rates(np.asarray(y, float), self.p, self.contact.kappa_star,
+                                    self.contact.one_minus_kappa_star, locked, sigma, self.tan_psi_hat, self.model)
 
     def contact_args(self, locked: bool, sigma: float) -> tuple:
         numbers = np.array([*self.runaway, self.contact.kappa_star, self.contact.one_minus_kappa_star,
                             float(locked), sigma, self.tan_psi_hat])
-        return Args((self.p, self.model, self.contact_typical, numbers))
+        return (self.p, self.model, self.contact_typical, numbers)
 
     def free(self, y) -> Phase:
         stops = int(self.limits.stops)
-        return Phase(FREE, full.rhs, full.jacobian, full.events, self.free_args, np.asarray(y, float),
+        f = self.free_functions
+        return Phase(FREE, f.rhs, f.jacobian, full.events, self.free_args, np.asarray(y, float),
                      full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * self.free_args[2])
 
     def locked(self, y) -> Phase:
-        return Phase(LOCKED, contact_rhs, contact_jacobian, contact_events, self.contact_args(True, 0.0),
+        f = self.functions
+        return Phase(LOCKED, f.rhs, f.jacobian, f.events, self.contact_args(True, 0.0),
                      np.asarray(y, float), LOCKED_EVENTS, (1, 1, 1, 1), (-1, -1, -1, -1),
                      self.rtol * self.contact_typical)
 
     def sliding(self, y, sigma: float) -> Phase:
         stick = int(self.tan_psi_hat > 0.0)
-        return Phase(SLIDING, contact_rhs, contact_jacobian, contact_events, self.contact_args(False, sigma),
+        f = self.functions
+        return Phase(SLIDING, f.rhs, f.jacobian, f.events, self.contact_args(False, sigma),
                      np.asarray(y, float), (*SLIDING_EVENTS, ""), (1, 1, stick, 0), (-1, -1, -1, 0),
                      self.rtol * self.contact_typical, sigma=sigma)
 
@@ -410,6 +441,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
     """
     p = full.params_array(apparatus)
     model = full.model_arguments(force_model)
+    rates = contact_functions(force_model.kind).rates
     args = (contact.kappa_star, contact.one_minus_kappa_star)
     tan_psi_hat = friction_coefficient(apparatus, contact)
     tau, a = apparatus.tau, apparatus.a
@@ -420,7 +452,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
     if locked:
         def residual(x):
             y = np.array([x[0], 0.0, arm * x[1] / (a * tau), x[1] / tau])
-            r = contact_rates(y, p, *args, True, 0.0, tan_psi_hat, model)
+            r = rates(y, p, *args, True, 0.0, tan_psi_hat, model)
             return [r[0] * tau * tau, r[2] * tau * tau]
 
         chi, omega_b = _solve(residual, [guess[0], guess[2] * tau])
@@ -428,7 +460,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
 
     def residual(x):
         y = np.array([x[0], 0.0, x[1] / tau, x[2] / tau])
-        r = contact_rates(y, p, *args, False, sigma, tan_psi_hat, model)
+        r = rates(y, p, *args, False, sigma, tan_psi_hat, model)
         return [r[0] * tau * tau, r[1] * tau * tau, r[2] * tau * tau]
 
     chi, omega_a, omega_b = _solve(residual, guess * np.array([1.0, tau, tau]))

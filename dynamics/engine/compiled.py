@@ -25,7 +25,6 @@ The model's functions must return C-contiguous float64 arrays: ``fun`` and
 from __future__ import annotations
 
 import hashlib
-import types as pytypes
 from collections import namedtuple
 from pathlib import Path
 
@@ -34,12 +33,12 @@ from numba import types
 from numba.core.types.function_type import WrapperAddressProtocol
 from numba.extending import typeof_impl
 
-from lubrication._jit import jit
+from lubrication._jit import specialise
 
 from . import driver
 from .state import STATE_TYPE
 
-__all__ = ["Args", "Engine", "FirstClass", "engine_for", "first_class", "function_types"]
+__all__ = ["Engine", "engine_for", "first_class", "function_types"]
 
 #: The compiled ``driver.init`` and ``driver.advance`` for one type of ``args``.
 Engine = namedtuple("Engine", ["init", "advance"])
@@ -69,11 +68,7 @@ def function_types(args_type):
 
 def _closed(py_func, signature):
     """``py_func`` compiled (or loaded from the cache) for ``signature`` only, filed under the sources' hash."""
-    named = pytypes.FunctionType(py_func.__code__, py_func.__globals__, py_func.__name__, py_func.__defaults__,
-                                 py_func.__closure__)
-    named.__qualname__ = f"{py_func.__qualname__}_{SOURCES_HASH}"
-    named.__doc__ = py_func.__doc__
-    dispatcher = jit(named)
+    dispatcher = specialise(py_func, SOURCES_HASH)
     dispatcher.compile(signature)
     dispatcher.disable_compile()
     return dispatcher
@@ -96,8 +91,8 @@ def engine_for(args, args_type=None) -> Engine:
     return engine
 
 
-class FirstClass(WrapperAddressProtocol):
-    """A compiled function as a first-class function value, its address and numba type looked up once.
+class _Address(WrapperAddressProtocol):
+    """A compiled function as the driver takes it, its address and numba type looked up once.
 
     Passed as a dispatcher, a model's function would be resolved to its
     compiled version and address at every call of the driver from Python
@@ -121,31 +116,10 @@ class FirstClass(WrapperAddressProtocol):
         return self._signature
 
 
-@typeof_impl.register(FirstClass)
+@typeof_impl.register(_Address)
 def _typeof_address(value, context):
     # numba's own rule for such objects builds the type afresh from the signature at every call
     # of the driver: 0.5 ms each when ``args`` is a nested tuple
-    return value._numba_type_
-
-
-class Args(tuple):
-    """A tuple of ``args`` for compiled code, its numba type looked up once.
-
-    From Python, numba types a tuple element by element at every call, in C for
-    numbers and arrays. A tuple holding a :class:`FirstClass` (a force model's
-    kernel, :func:`dynamics.equations.forces.compiled`) took its Python path
-    instead, 10 us more a call than a tuple of arrays, which the dispatcher's C code
-    reads from ``_numba_type_`` without it.
-    """
-
-    def __new__(cls, items):
-        self = super().__new__(cls, items)
-        self._numba_type_ = numba.typeof(tuple(self))
-        return self
-
-
-@typeof_impl.register(Args)
-def _typeof_args(value, context):
     return value._numba_type_
 
 
@@ -161,6 +135,5 @@ def first_class(fun, jac, events, args, args_type=None) -> tuple:
     found = _ADDRESSES.get(key)
     if found is None:
         fun_type, jac_type, events_type = function_types(key[3])
-        found = _ADDRESSES[key] = (FirstClass(fun, fun_type), FirstClass(jac, jac_type),
-                                  FirstClass(events, events_type))
+        found = _ADDRESSES[key] = (_Address(fun, fun_type), _Address(jac, jac_type), _Address(events, events_type))
     return found

@@ -1,23 +1,20 @@
 """The force-model interface the equations of motion call, with one adapter per lubrication model.
 
 A :class:`ForceModel` is plain data: a kind and the arrays its kernel needs
-(empty arrays for what it does not use), so that the right-hand side of the
-equations of motion is compiled and calls :func:`evaluate` for any model without
-Python in the loop. Compiled code takes a model as :func:`compiled` gives it: its
-data packed into one float64 array (:attr:`ForceModel.data`), and the compiled
-forces of its kind (:data:`KERNELS`) as a first-class function, called through a
-pointer. Every model then has the same numba type, so the compiled integrator and
-the equations are compiled once for all of them; and they carry none of the
-kernels' code, so a run loads only the kernel of its own model. With the four
-kernels compiled into every function that evaluates forces (a branch on the kind),
-each of the full model's right-hand sides and Jacobians was a 0.58 MB library for
-numba to load: a warm ``snail run`` of the default scene spent about 0.1 s more
-loading them (now 0.07-0.08 MB). The pointer costs the default scene's run about
-3% (8.0 against 7.8 ms, the least of 40 runs, interleaved processes on one core),
-and a call from Python about 4 us more, to unbox the function. Passed as the tuple of its eleven arrays, the model cost more at each
-call of the right-hand side (copying them and counting their references) than
-the closed forms themselves: 0.28 against 0.09 us a call, 11.3 against 6.4 ms
-for the default scene's trajectory.
+(empty arrays for what it does not use), packed into one float64 array
+(:attr:`ForceModel.data`), so that the compiled equations of motion take any
+model as the same numba type, and the compiled integrator serves them all. Each
+kind's forces are a compiled kernel of their own (:data:`KERNELS`). The equations
+of motion are compiled once per kernel (:func:`dynamics.equations.full.model_functions`),
+so that a run loads the code of its own model only; :func:`evaluate` tells the
+kinds apart at run time, for the functions that serve every model. With the
+four kernels compiled into every function of a run, each of the full model's
+right-hand sides and Jacobians was a 0.58 MB library for numba to load: a warm
+``snail run`` of the default scene spent about 0.1 s more loading them. Passed
+as the tuple of its eleven arrays, the model cost more at each call of the
+right-hand side (copying them and counting their references) than the closed
+forms themselves: 0.28 against 0.09 us a call, 11.3 against 6.4 ms for the
+default scene's trajectory.
 
 Fluid inertia. ``closed_form(inertia=True, rho=...)`` and
 ``stokes_exact(inertia=True, rho=...)`` add the first inertial correction of
@@ -43,7 +40,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-from numba import types
 
 from lubrication import _cavitation_kernels, _kernels
 from lubrication._jit import jit
@@ -55,8 +51,8 @@ from lubrication.inertia import _first_order_f_eps
 from lubrication.reynolds import PROFILES, _check_discretisation, _psi_rule
 from lubrication.stokes_exact import stokes_exact_resistance
 
-__all__ = ["FORCE_MODELS", "KERNELS", "ForceModel", "closed_form", "compiled", "evaluate", "force_model", "reynolds",
-           "stokes_exact"]
+__all__ = ["FORCE_MODELS", "KERNELS", "KIND_NAMES", "ForceModel", "closed_form", "evaluate", "force_model",
+           "reynolds", "stokes_exact"]
 
 FORCE_MODELS = ("closed-form", "reynolds", "stokes-exact", "stokes")
 ENDS = ("infinite", "open")
@@ -385,29 +381,18 @@ def cavitating_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
 
 #: The compiled forces of each kind of model, indexed by :data:`CLOSED`, :data:`REYNOLDS`, ...
 KERNELS = (closed_forces, reynolds_forces, cavitating_forces, exact_forces)
-#: Their numba type as a first-class function: (data, a, b, mu, L, kappa, 1 - kappa, eps', W_a, W_b) to (f_eps, f_chi, T_a).
-KERNEL_TYPE = types.FunctionType(types.UniTuple(types.float64, 3)(types.float64[::1], *[types.float64] * 9))
-_ADDRESSES: dict = {}
+#: The name each kind's compiled functions are filed under (:func:`lubrication._jit.specialise`).
+KIND_NAMES = ("closed", "reynolds", "cavitating", "exact")
 
 
-def compiled(force_model: ForceModel) -> tuple:
-    """``force_model`` as compiled code takes it: its :attr:`ForceModel.data` and its kind's kernel.
-
-    The kernel (:data:`KERNELS`) is a first-class function, compiled or loaded from numba's
-    cache on first use; the pair is an :class:`~dynamics.engine.compiled.Args`.
-    """
-    # the engine's modules only when compiled code runs, not for a force at one instant
-    from dynamics.engine.compiled import Args, FirstClass
-
-    kind = force_model.kind
-    address = _ADDRESSES.get(kind)
-    if address is None:
-        address = _ADDRESSES[kind] = FirstClass(KERNELS[kind], KERNEL_TYPE)
-    return Args((force_model.data, address))
-
-
-@jit(inline="always")
+@jit
 def evaluate(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    """f_eps, f_chi (N) and T_a (N m) of ``model``, a force model as :func:`compiled` gives it."""
-    data, kernel = model
-    return kernel(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    """f_eps, f_chi (N) and T_a (N m) of a model of any kind (:attr:`ForceModel.data`), told apart at run time."""
+    kind = int(model[_KIND])
+    if kind == CLOSED:
+        return closed_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    if kind == EXACT:
+        return exact_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    if kind == CAVITATING:
+        return cavitating_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)
+    return reynolds_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b)

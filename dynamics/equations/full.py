@@ -59,13 +59,14 @@ are events located on the dense output (:mod:`dynamics.contact.hybrid`).
 
 from __future__ import annotations
 
+import functools
 import math
+from collections import namedtuple
 
 import numpy as np
 
-from dynamics.engine.compiled import Args
-from dynamics.equations.forces import ForceModel, compiled, evaluate
-from lubrication._jit import jit
+from dynamics.equations.forces import KERNELS, KIND_NAMES, ForceModel, evaluate
+from lubrication._jit import jit, specialise
 
 __all__ = [
     "CARTESIAN_BELOW",
@@ -227,18 +228,23 @@ def gravity_response(p):
 
 
 @jit(inline="always")
-def _accelerations(p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b):
-    """(x'', z'', Omega_a', Omega_b') of (2.1)-(2.4) in a state given by its geometry and rates."""
-    f_eps, f_chi, t_a = evaluate(model, p[_A], p[_B], p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
-                                 omega_b - chi_dot)
+def _accelerations(forces, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b):
+    """(x'', z'', Omega_a', Omega_b') of (2.1)-(2.4) in a state given by its geometry and rates.
+
+    ``forces`` is the compiled force kernel (:data:`dynamics.equations.forces.KERNELS`,
+    or :func:`~dynamics.equations.forces.evaluate` for any kind).
+    """
+    f_eps, f_chi, t_a = forces(model, p[_A], p[_B], p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
+                               omega_b - chi_dot)
     frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
     fluid = force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
     gravity = gravity_response(p)
     return (fluid[0] + gravity[0], fluid[1] + gravity[1], fluid[2] + gravity[2], fluid[3] + gravity[3])
 
 
-@jit
-def rhs(t, y, args):
+# _rhs, _polar_rhs and their Jacobians are templates: FORCES (a force kernel) and RHS or POLAR_RHS
+# are bound, and the copies compiled, by _compiled below (rhs, ..., for any kind; model_functions).
+def _rhs(t, y, args):
     """dy/dt of the full model; ``args`` from :func:`run_args` (the parameters, then the force model's data)."""
     p, model = args[0], args[1]
     delta = p[_B] - p[_A]
@@ -246,7 +252,7 @@ def rhs(t, y, args):
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
     eps_dot = ex * vx + ez * vz
     chi_dot = (ez * vx - ex * vz) / eps if eps > 0.0 else 0.0
-    rates = _accelerations(p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b)
+    rates = _accelerations(FORCES, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b)  # noqa: F821
     dy = np.empty(7)
     scale = 1.0 / (delta * zeta)
     stretch = big_u * big_u * eps_dot
@@ -268,16 +274,15 @@ def _polar_geometry(y):
     return big_u, s2, s, kappa, 1.0 / (s2 * (1.0 + kappa)), y[0] / big_u, y[1] / big_u
 
 
-@jit
-def polar_rhs(t, y, args):
+def _polar_rhs(t, y, args):
     """dy/dt of the full model near contact, state :data:`POLAR_STATE_NAMES` (module docstring)."""
     p, model = args[0], args[1]
     delta = p[_B] - p[_A]
     big_u, s2, s, kappa, omk, ex, ez = _polar_geometry(y)
     cx, cz = ez, -ex  # e_chi
     q_r, q_t, omega_a, omega_b = y[2], y[3], y[4], y[5]
-    rates = _accelerations(p, model, kappa, omk, kappa * delta, ex, ez, delta * q_r / (s2 * s), q_t / big_u,
-                           omega_a, omega_b)
+    rates = _accelerations(FORCES, p, model, kappa, omk, kappa * delta, ex, ez,  # noqa: F821
+                           delta * q_r / (s2 * s), q_t / big_u, omega_a, omega_b)
     a_r = (ex * rates[0] + ez * rates[1]) / delta
     a_t = (cx * rates[0] + cz * rates[1]) / delta
     dy = np.empty(7)
@@ -340,16 +345,41 @@ def central_differences(fun, t, y, args, passive=0):
     return jac
 
 
-@jit
-def jacobian(t, y, args):
+def _jacobian(t, y, args):
     """d(rhs)/dy by central differences (``central_differences``); X_b is passive."""
-    return central_differences(rhs, t, y, args, 1)
+    return central_differences(RHS, t, y, args, 1)  # noqa: F821
 
 
-@jit
-def polar_jacobian(t, y, args):
+def _polar_jacobian(t, y, args):
     """d(polar_rhs)/dy by central differences (``central_differences``); X_b is passive."""
-    return central_differences(polar_rhs, t, y, args, 1)
+    return central_differences(POLAR_RHS, t, y, args, 1)  # noqa: F821
+
+
+#: The full model's compiled right-hand sides and Jacobians, for one force kernel.
+ModelFunctions = namedtuple("ModelFunctions", ["rhs", "jacobian", "polar_rhs", "polar_jacobian"])
+
+
+def _compiled(forces, name: str) -> ModelFunctions:
+    """The templates above compiled with the force kernel ``forces``, filed under ``name``."""
+    rhs = specialise(_rhs, name, FORCES=forces)
+    polar_rhs = specialise(_polar_rhs, name, FORCES=forces)
+    return ModelFunctions(rhs, specialise(_jacobian, name, RHS=rhs), polar_rhs,
+                          specialise(_polar_jacobian, name, POLAR_RHS=polar_rhs))
+
+
+# For any force model, the kind told apart at run time: these carry every kernel's code.
+rhs, jacobian, polar_rhs, polar_jacobian = _compiled(evaluate, "any")
+
+
+@functools.cache
+def model_functions(kind: int) -> ModelFunctions:
+    """The full model's functions compiled for the force models of ``kind`` only (:data:`~dynamics.equations.forces.KERNELS`).
+
+    What a run takes: it loads the code of its own force model, not of all four
+    (module docstring of :mod:`dynamics.equations.forces`). The same numbers as
+    :data:`rhs` and the others, which serve any model.
+    """
+    return _compiled(KERNELS[kind], KIND_NAMES[kind])
 
 
 #: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
@@ -456,7 +486,7 @@ def run_args(apparatus, force_model: ForceModel, *, gap_floor: float, max_reynol
     per_rate = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed: (dynamics.equations.full.reduced_reynolds)
     ev = np.array([math.log(gap_floor), max_reynolds, per_rate * ap.a, per_rate * ap.b,
                    2.0 * math.pi * ap.b * max_turns, x_b0, u_star])
-    return Args((params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev))
+    return (params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev)
 
 
 def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b, *,
@@ -524,5 +554,5 @@ def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.nda
 
 
 def model_arguments(force_model: ForceModel) -> tuple:
-    """The force model as :func:`rhs` takes it (``args[1]``): :func:`dynamics.equations.forces.compiled`."""
-    return compiled(force_model)
+    """The force model's data as :func:`rhs` takes them (``args[1]``)."""
+    return force_model.data
