@@ -7,7 +7,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from dynamics.app.figures import FigureProcess, figure_png
+from dynamics.app.figure_process import FigureProcess
+from dynamics.app.figures import figure_png
 
 
 def _trajectory(n=200):

@@ -155,6 +155,7 @@ snail_api_groups = [
     ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "dynamics.scenes.units"]),
     ("The application: runs, files, sweeps, the command", [
         "dynamics.app", "dynamics.app.run", "dynamics.app.output", "dynamics.app.figures",
+        "dynamics.app.figure_process",
         "dynamics.app.auto", "dynamics.app.folder", "dynamics.app.cli", "dynamics.app.precompile", "dynamics.app.sweeps",
         "dynamics.app.sweeps.spec", "dynamics.app.sweeps.point", "dynamics.app.sweeps.compiled",
         "dynamics.app.sweeps.batch", "dynamics.app.sweeps.store", "dynamics.app.sweeps.run",

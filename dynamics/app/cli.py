@@ -356,7 +356,7 @@ def _progress_bar(total: float, unit: str):
 def _run_scene(args) -> int:
     if args.no_plot:
         return _run_scene_drawing(args, None)
-    from dynamics.app.figures import FigureProcess
+    from dynamics.app.figure_process import FigureProcess
 
     with FigureProcess() as figures:  # matplotlib imports in the child while the scene runs here
         return _run_scene_drawing(args, figures)

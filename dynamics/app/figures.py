@@ -9,11 +9,11 @@ the spins Omega_a and Omega_b; the distance rolled X_b. Time is in the scene's
 units, with tau stated; the title names the model in the paper's terms and
 says how the run ended.
 
-Drawing costs about 0.7 s, half of it importing matplotlib, which is longer
-than a default run takes once its kernels are compiled. :class:`FigureProcess`
-therefore imports matplotlib in a child process while the run computes, builds
-and renders the panels that do not depend on the run there, and then draws
-what it is sent into them.
+Run as ``python -m dynamics.app.figures``, this module is the child of
+:class:`dynamics.app.figure_process.FigureProcess`: it imports matplotlib and
+builds and renders the panels that do not depend on the run (``_frame``)
+while the run computes, then reads the trajectory from stdin, draws it into
+them (``_plot``) and writes the PNG to stdout.
 """
 
 from __future__ import annotations
@@ -21,20 +21,15 @@ from __future__ import annotations
 import io
 import math
 import pickle
-import subprocess
 import sys
-import threading
 from types import SimpleNamespace
-from typing import Self
 
 import numpy as np
 
-__all__ = ["DPI", "FigureProcess", "figure_png", "trajectory_figure"]
+__all__ = ["DPI", "figure_png", "trajectory_figure"]
 
 #: Resolution of trajectory.png.
 DPI = 110
-#: What the figure reads of a :class:`~dynamics.simulation.Trajectory`.
-_FIELDS = ("columns", "dimensionless", "equations", "forces", "status", "message", "groups", "tau")
 
 _EQUATIONS = {"full": "full equations (2.1)-(2.4)", "reduced": "reduced equations (2.11)"}
 _FORCES = {"closed-form": "lubrication forces (2.5)-(2.7)", "reynolds": "Reynolds-equation forces",
@@ -89,7 +84,7 @@ def _angle_panel(ax, t, phi):
 def _frame() -> SimpleNamespace:
     """The figure's panels and artists before any data: what does not depend on the run.
 
-    The child of :class:`FigureProcess` builds this while the run computes. Made
+    The child of :class:`~dynamics.app.figure_process.FigureProcess` builds this while the run computes. Made
     here rather than with the data, the colorbar and the legends (with their
     artists, empty) take 20 ms, a ninth, off the drawing that the run waits for.
     """
@@ -196,65 +191,7 @@ def figure_png(trajectory) -> bytes:
     return _png(trajectory_figure(trajectory))
 
 
-class FigureProcess:
-    """Draws the figure in a child process, started before the run so that matplotlib imports meanwhile.
-
-    Use as a context manager. :meth:`send` hands the child a trajectory as soon
-    as the run ends, and a thread feeds it and collects its PNG while the caller
-    writes the other outputs; :meth:`png` returns :func:`figure_png` of it.
-    Leaving the context without calling them stops the child. The child
-    receives only the columns and labels the figure reads, so it never imports
-    the integrator.
-    """
-
-    def __enter__(self) -> Self:
-        # its own process group (setsid): Ctrl-C at the terminal reaches only the parent, which stops the child
-        self._child = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
-                                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
-        self._sent = self._drawing = self._output = None
-        return self
-
-    def send(self, trajectory) -> None:
-        """Start drawing ``trajectory``: the child has it, and a thread waits for the PNG."""
-        view = SimpleNamespace(**{name: getattr(trajectory, name) for name in _FIELDS})
-        payload = pickle.dumps(view, protocol=pickle.HIGHEST_PROTOCOL)
-        self._sent = trajectory
-        self._drawing = threading.Thread(target=self._communicate, args=(payload,), daemon=True)
-        self._drawing.start()
-
-    def _communicate(self, payload: bytes) -> None:
-        try:
-            self._output = self._child.communicate(payload)
-        except BaseException as err:  # noqa: BLE001 - raised again by png(), in the caller's thread
-            self._output = err
-
-    def png(self, trajectory) -> bytes:
-        """figure_png(trajectory), drawn by the child (sent now unless :meth:`send` sent it)."""
-        if self._drawing is None:
-            self.send(trajectory)
-        elif trajectory is not self._sent:
-            msg = "png() asked for another trajectory than the one sent to the child"
-            raise ValueError(msg)
-        self._drawing.join()
-        if isinstance(self._output, BaseException):
-            raise self._output
-        png, err = self._output
-        if self._child.returncode != 0:
-            lines = err.decode(errors="replace").strip().splitlines() or [f"exit status {self._child.returncode}"]
-            msg = f"drawing trajectory.png failed: {lines[-1]}"  # the exception, without the child's traceback
-            raise RuntimeError(msg)
-        return png
-
-    def __exit__(self, *exc) -> None:
-        if self._child.returncode is None:
-            self._child.kill()
-            if self._drawing is None:
-                self._child.communicate()
-        if self._drawing is not None:
-            self._drawing.join()
-
-
-if __name__ == "__main__":  # the child of FigureProcess
+if __name__ == "__main__":  # the child of dynamics.app.figure_process.FigureProcess
     import os
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg

@@ -97,7 +97,7 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
     its staging folder and are moved into place together; the summary is returned.
     ``plot`` False leaves out the figure, which ``draw(trajectory)`` returns as
     PNG bytes (:func:`~dynamics.app.figures.figure_png`, or a
-    :class:`~dynamics.app.figures.FigureProcess`'s ``png``); a run of more than
+    :class:`~dynamics.app.figure_process.FigureProcess`'s ``png``); a run of more than
     ``max_rows`` steps is thinned in the CSV (:func:`thinning`).
     """
     if not isinstance(folder, OutputFolder):
