@@ -27,6 +27,10 @@ def jit(func=None, **extra):
     return njit(**options)(func)
 
 
+#: The globals each (module, template, name) was compiled with, in this process.
+_SPECIALISED: dict = {}
+
+
 def specialise(template, name: str, **bound):
     """:func:`jit` of a copy of the plain function ``template`` in which the globals ``bound`` are given.
 
@@ -34,8 +38,13 @@ def specialise(template, name: str, **bound):
     are compiled into its code: a copy per choice carries only the code it calls.
     Numba files a compiled function under its qualified name, so each copy is named
     ``<template>_<name>`` and keeps its own entry in the disk cache; the cache is
-    keyed on the template's source file, so ``name`` must say what ``bound`` holds.
+    keyed on the template's source file, so ``name`` must say what ``bound`` holds;
+    the same name with other globals is refused (ValueError).
     """
+    key = (template.__module__, template.__qualname__, name)
+    if _SPECIALISED.setdefault(key, bound) != bound:
+        msg = f"{template.__qualname__}_{name} is already compiled with other globals: give these another name"
+        raise ValueError(msg)
     namespace = {**template.__globals__, **bound}
     copy = types.FunctionType(template.__code__, namespace, f"{template.__name__}_{name}", template.__defaults__,
                               template.__closure__)
