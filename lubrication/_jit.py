@@ -9,11 +9,13 @@ plain Python, for coverage and debugging.
 
 from __future__ import annotations
 
+import hashlib
 import types
+from pathlib import Path
 
 from numba import njit
 
-__all__ = ["JIT_OPTIONS", "jit", "specialise"]
+__all__ = ["JIT_OPTIONS", "jit", "sources_hash", "specialise"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
 JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False}
@@ -52,3 +54,16 @@ def specialise(template, name: str, **bound):
     copy.__module__ = template.__module__
     copy.__doc__ = template.__doc__
     return jit(copy)
+
+
+def sources_hash(*paths: Path) -> str:
+    """The first 12 hex digits of the sha256 of the files ``paths``, in the order given.
+
+    numba checks only the source file of a function it loads from its cache, not
+    of the code compiled into it: a :func:`specialise` copy named with the hash
+    of every source it carries is compiled anew when any of them changes.
+    """
+    digest = hashlib.sha256()
+    for path in paths:
+        digest.update(Path(path).read_bytes())
+    return digest.hexdigest()[:12]

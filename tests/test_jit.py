@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from lubrication._jit import jit, specialise
+from lubrication._jit import jit, sources_hash, specialise
 
 
 @jit
@@ -38,3 +38,23 @@ def test_a_name_taken_by_other_globals_is_refused():
     specialise(_template, "twice", KERNEL=_double)  # the same globals: accepted
     with pytest.raises(ValueError, match="_template_twice is already compiled with other globals"):
         specialise(_template, "twice", KERNEL=_square)
+
+
+def test_the_sources_hash_follows_every_byte(tmp_path):
+    first, second = tmp_path / "a.py", tmp_path / "b.py"
+    first.write_text("x = 1\n")
+    second.write_text("y = 2\n")
+    before = sources_hash(first, second)
+    assert sources_hash(first, second) == before
+    second.write_text("y = 3\n")
+    assert sources_hash(first, second) != before
+
+
+def test_the_equations_are_filed_under_the_kernels_sources():
+    """Compiled with a force kernel from another file, the equations' copies carry that file's hash in their name."""
+    from dynamics.contact import full as contact
+    from dynamics.equations import forces, full
+
+    copies = [*full.model_functions(forces.CLOSED), full.rhs, full.jacobian, contact.contact_rhs,
+              *contact.contact_functions(forces.EXACT)]
+    assert all(c.py_func.__qualname__.endswith(forces.KERNELS_HASH) for c in copies)

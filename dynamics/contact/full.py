@@ -88,7 +88,13 @@ from scipy.optimize import fsolve
 from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.equations import full
-from dynamics.equations.forces import KERNELS, KIND_NAMES, ForceModel, evaluate
+from dynamics.equations.forces import (
+    KERNELS,
+    KERNELS_HASH,
+    KIND_NAMES,
+    ForceModel,
+    evaluate,
+)
 from dynamics.equations.limits import Limits
 from lubrication._jit import specialise
 
@@ -288,7 +294,7 @@ def _compiled(forces, name: str) -> ContactFunctions:
 
 
 # For any force model, the kind told apart at run time: these carry every kernel's code.
-contact_rates, contact_rhs, contact_jacobian, contact_events = _compiled(evaluate, "any")
+contact_rates, contact_rhs, contact_jacobian, contact_events = _compiled(evaluate, f"any_{KERNELS_HASH}")
 
 
 @functools.cache

@@ -24,7 +24,6 @@ The model's functions must return C-contiguous float64 arrays: ``fun`` and
 
 from __future__ import annotations
 
-import hashlib
 from collections import namedtuple
 from pathlib import Path
 
@@ -33,7 +32,7 @@ from numba import types
 from numba.core.types.function_type import WrapperAddressProtocol
 from numba.extending import typeof_impl
 
-from lubrication._jit import specialise
+from lubrication._jit import sources_hash, specialise
 
 from . import driver
 from .state import STATE_TYPE
@@ -49,14 +48,7 @@ _INDICES = types.int64[::1]
 _ENGINES: dict = {}
 
 
-def _sources_hash() -> str:
-    digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        digest.update(path.read_bytes())
-    return digest.hexdigest()[:12]
-
-
-SOURCES_HASH = _sources_hash()
+SOURCES_HASH = sources_hash(*sorted(Path(__file__).parent.glob("*.py")))
 
 
 def function_types(args_type):

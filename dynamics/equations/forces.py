@@ -38,11 +38,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
 
 import numpy as np
 
 from lubrication import _cavitation_kernels, _kernels
-from lubrication._jit import jit
+from lubrication._jit import jit, sources_hash
 from lubrication.cavitation import CAVITATION_MODELS
 from lubrication.closed_form import lubrication_resistance
 from lubrication.finite_length import finite_length_factor_kernel
@@ -381,8 +382,11 @@ def cavitating_forces(model, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
 
 #: The compiled forces of each kind of model, indexed by :data:`CLOSED`, :data:`REYNOLDS`, ...
 KERNELS = (closed_forces, reynolds_forces, cavitating_forces, exact_forces)
-#: The name each kind's compiled functions are filed under (:func:`lubrication._jit.specialise`).
-KIND_NAMES = ("closed", "reynolds", "cavitating", "exact")
+#: The name each kind's compiled functions are filed under (:func:`lubrication._jit.specialise`): the kind,
+#: and a hash of the kernels' sources (this module and the lubrication package), so that editing a kernel
+#: compiles the equations of motion that carry it anew.
+KERNELS_HASH = sources_hash(Path(__file__), *sorted(Path(_kernels.__file__).parent.glob("*.py")))
+KIND_NAMES = tuple(f"{kind}_{KERNELS_HASH}" for kind in ("closed", "reynolds", "cavitating", "exact"))
 
 
 @jit

@@ -65,7 +65,13 @@ from collections import namedtuple
 
 import numpy as np
 
-from dynamics.equations.forces import KERNELS, KIND_NAMES, ForceModel, evaluate
+from dynamics.equations.forces import (
+    KERNELS,
+    KERNELS_HASH,
+    KIND_NAMES,
+    ForceModel,
+    evaluate,
+)
 from lubrication._jit import jit, specialise
 
 __all__ = [
@@ -368,7 +374,7 @@ def _compiled(forces, name: str) -> ModelFunctions:
 
 
 # For any force model, the kind told apart at run time: these carry every kernel's code.
-rhs, jacobian, polar_rhs, polar_jacobian = _compiled(evaluate, "any")
+rhs, jacobian, polar_rhs, polar_jacobian = _compiled(evaluate, f"any_{KERNELS_HASH}")
 
 
 @functools.cache
