@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from lubrication import Annulus, Fluid, Motion, reynolds_forces
@@ -142,7 +142,11 @@ def _check_solution(sol, annulus, motion, model, p_cav, p_ref):
         dp = max(np.max(np.abs(sol.p - p_ref)), np.finfo(float).eps * np.max(np.abs(sol.p)))
         poiseuille = h_max**3 * dp * len(f) / (12 * FLUID.mu * annulus.a)
         terms = u * h_max + annulus.a * abs(motion.eps_dot) + poiseuille
-        assert np.all(np.abs(sol.mass_residual[1:]) <= 1e-10 * terms)
+        # below the normal range (wall speeds of 1e-308 m/s and less) every number is a multiple of the
+        # smallest subnormal, whatever the size of the terms: each balance rounds by a few of them, and the
+        # flux handed from node to node carries them along, hence a floor of a few per node
+        floor = 8 * len(f) * np.finfo(float).smallest_subnormal
+        assert np.all(np.abs(sol.mass_residual[1:]) <= 1e-10 * terms + floor)
 
 
 @settings(max_examples=150, deadline=None)
@@ -164,6 +168,11 @@ def test_finite_complementary_and_settled_everywhere(kappa, eps_dot, omegas, p_r
 
 @pytest.mark.slow
 @settings(max_examples=2000, deadline=None)
+# wall speeds below the normal range, where the balance rounds in subnormal quanta (found by this test)
+@example(kappa=0.0, delta_over_a=0.015625, velocities=(2.2250738585e-313, 0.0, 0.0, 0.0), p_ref=0.0, drop=0.0,
+         n=8, model="jfo", profile="thin", grid="sommerfeld")
+@example(kappa=0.0, delta_over_a=0.515625, velocities=(0.0, 0.0, 0.0, 2.2250738585072014e-308), p_ref=0.0,
+         drop=0.0, n=122, model="jfo", profile="eccentric", grid="sommerfeld")
 @given(
     kappa=st.floats(0.0, 0.999),
     delta_over_a=st.floats(1e-3, 2.0),
