@@ -168,7 +168,7 @@ def _rms(x, weight):
     for j in range(x.shape[0]):
         r = x[j] * weight[j]
         total += r * r
-    return math.sqrt(total) / math.sqrt(x.shape[0])
+    return math.sqrt(total / x.shape[0])
 
 
 @jit(cache=False, inline="always")
@@ -179,7 +179,7 @@ def _rms_stages(x, weight):
         for j in range(x.shape[1]):
             r = x[i, j] * weight[j]
             total += r * r
-    return math.sqrt(total) / math.sqrt(x.size)
+    return math.sqrt(total / x.size)
 
 
 @jit(cache=False)

@@ -187,12 +187,14 @@ def rhs_values(t, y, args):
     xi, eta, omega_a, omega_b = y[0], y[1], y[2], y[3]
     rho2 = 1.0 + xi * xi + eta * eta
     rho = math.sqrt(rho2)
+    half_xi_over_rho2 = 0.5 * xi / rho2
+    xi_over_rho = 2.0 * half_xi_over_rho2 * rho  # a multiplication for a division: about seven calls a step
     w = 0.5 * (omega_a + omega_b)
     d = omega_b - omega_a
-    return (eta * w + 0.5 * xi * eta / rho2,
-            -xi * w - 1.0 - 0.5 * xi * xi / rho2,
-            (d * rho / 3.0 + xi / rho) / ups,
-            (s + 0.5 * xi / rho - d * rho / 6.0) / (mu_ * ups),
+    return (eta * w + half_xi_over_rho2 * eta,
+            -xi * w - 1.0 - half_xi_over_rho2 * xi,
+            (d * rho / 3.0 + xi_over_rho) / ups,
+            (s + 0.5 * xi_over_rho - d * rho / 6.0) / (mu_ * ups),
             omega_b)
 
 
