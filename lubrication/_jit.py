@@ -5,17 +5,27 @@ so that threads and dask workers run kernels side by side) and keeps IEEE
 semantics (``fastmath=False``: a validation code must not trade NaN and
 rounding guarantees for speed). ``NUMBA_DISABLE_JIT=1`` runs every kernel as
 plain Python, for coverage and debugging.
+
+The disk cache is keyed on every source of the packages ``dynamics`` and
+``lubrication`` (:func:`project_stamp`), not only on the kernel's own file as
+numba keys it: a kernel carries the code of the kernels it calls from other
+modules and the values of their constants, so an edit to any of them must
+compile it anew rather than load code that no longer matches the sources. Any
+edit to the two packages therefore recompiles their kernels on the next run.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
+import os
 import types
 from pathlib import Path
 
 from numba import njit
+from numba.core import caching
 
-__all__ = ["JIT_OPTIONS", "jit", "sources_hash", "specialise"]
+__all__ = ["JIT_OPTIONS", "jit", "project_stamp", "sources_hash", "sources_stamp", "specialise"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
 JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False}
@@ -67,3 +77,63 @@ def sources_hash(*paths: Path) -> str:
     for path in paths:
         digest.update(Path(path).read_bytes())
     return digest.hexdigest()[:12]
+
+
+#: The packages whose compiled code calls into one another; they are installed side by side.
+PACKAGES = ("dynamics", "lubrication")
+_ROOTS = tuple(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), name) for name in PACKAGES)
+
+
+def sources_stamp(*packages) -> str:
+    """The sha256 of every ``*.py`` file under the folders ``packages``: relative paths and contents, in path order."""
+    digest = hashlib.sha256()
+    for package in map(os.fspath, packages):
+        base, paths = os.path.dirname(package), []
+        for folder, subfolders, names in os.walk(package):
+            subfolders[:] = [d for d in subfolders if d != "__pycache__"]  # numba's cache files: hundreds
+            paths += [os.path.join(folder, name) for name in names if name.endswith(".py")]
+        for path in sorted(paths):
+            digest.update(os.path.relpath(path, base).replace(os.sep, "/").encode() + b"\0")
+            with open(path, "rb") as source:
+                digest.update(source.read())
+    return digest.hexdigest()
+
+
+@functools.cache
+def project_stamp() -> str:
+    """:func:`sources_stamp` of :data:`PACKAGES` as this process found them: the key of their kernels' cache."""
+    return sources_stamp(*_ROOTS)
+
+
+class _ProjectStamped:
+    """A numba cache locator for the kernels of :data:`PACKAGES`: the cache is keyed on :func:`project_stamp`."""
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        path = os.path.abspath(py_file)
+        if not any(path.startswith(root + os.sep) for root in _ROOTS):
+            return None  # not ours: numba's own locators take it
+        return super().from_function(py_func, py_file)
+
+    def get_source_stamp(self):
+        return project_stamp()
+
+
+def _install_locators() -> bool:
+    """Put the project's locators ahead of numba's own; False where this numba's caching differs.
+
+    Without them (another numba), numba keys each kernel on its own file, and the
+    names that carry :func:`sources_hash` still cover the force kernels and the engine.
+    """
+    impl = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    names = ("UserProvidedCacheLocator", "InTreeCacheLocator", "UserWideCacheLocator")
+    bases = [getattr(caching, name, None) or getattr(caching, f"_{name}", None) for name in names]
+    classes = getattr(impl, "_locator_classes", None)
+    if not isinstance(classes, list) or None in bases:
+        return False
+    if not any(issubclass(c, _ProjectStamped) for c in classes):
+        classes[:0] = [type(f"Project{name}", (_ProjectStamped, base), {}) for name, base in zip(names, bases)]
+    return True
+
+
+LOCATORS_INSTALLED = _install_locators()

@@ -1,9 +1,16 @@
-"""lubrication._jit.specialise: a template compiled with the functions it calls bound by name."""
+"""lubrication._jit: specialised copies of a template, and a disk cache keyed on every source of the packages."""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lubrication._jit import jit, sources_hash, specialise
+from lubrication import _jit
+from lubrication._jit import jit, project_stamp, sources_hash, sources_stamp, specialise
 
 
 @jit
@@ -58,3 +65,70 @@ def test_the_equations_are_filed_under_the_kernels_sources():
     copies = [*full.model_functions(forces.CLOSED), full.rhs, full.jacobian, contact.contact_rhs,
               *contact.contact_functions(forces.EXACT)]
     assert all(c.py_func.__qualname__.endswith(forces.KERNELS_HASH) for c in copies)
+
+
+def test_the_stamp_follows_every_source_and_only_sources(tmp_path):
+    package = tmp_path / "package"
+    (package / "sub").mkdir(parents=True)
+    (package / "a.py").write_text("A = 1\n")
+    (package / "sub" / "b.py").write_text("B = 2\n")
+    (package / "table.json").write_text("{}")
+    before = sources_stamp(package)
+    (package / "table.json").write_text("[]")  # not a source
+    assert sources_stamp(package) == before
+    (package / "sub" / "b.py").write_text("B = 3\n")
+    edited = sources_stamp(package)
+    assert edited != before
+    (package / "sub" / "b.py").rename(package / "b.py")  # the same bytes elsewhere
+    assert sources_stamp(package) != edited
+
+
+def test_the_project_kernels_are_keyed_on_the_project_stamp():
+    from dynamics.equations import reduced
+
+    assert _jit.LOCATORS_INSTALLED
+    assert reduced.rhs._cache._impl.locator.get_source_stamp() == project_stamp()
+    assert _double._cache._impl.locator.get_source_stamp() != project_stamp()  # a test module's: numba's own
+
+
+_CALLEE = """from lubrication._jit import jit
+
+SCALE = {scale}
+
+
+@jit
+def callee(x):
+    return SCALE * x
+"""
+_CALLER = """from lubrication._jit import jit
+from lubrication._probe_callee import callee
+
+
+@jit
+def caller(x):
+    return callee(x) + 1.0
+
+
+print(caller(3.0), sum(caller.stats.cache_hits.values()))
+"""
+
+
+def test_an_edit_to_a_called_module_recompiles_its_caller(tmp_path):
+    """numba alone would load the caller's cached code, with the callee as it was compiled then."""
+    root = Path(_jit.__file__).resolve().parents[1]
+    for name in _jit.PACKAGES:
+        shutil.copytree(root / name, tmp_path / name, ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp_path / "lubrication" / "_probe_caller.py").write_text(_CALLER)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env["PYTHONPATH"] = str(tmp_path)
+
+    def run(scale):
+        (tmp_path / "lubrication" / "_probe_callee.py").write_text(_CALLEE.format(scale=scale))
+        done = subprocess.run([sys.executable, "-m", "lubrication._probe_caller"], cwd=tmp_path, env=env,
+                              capture_output=True, text=True, check=True)
+        value, hits = done.stdout.split()
+        return float(value), int(hits)
+
+    assert run(2.0) == (7.0, 0)  # compiled and cached
+    assert run(2.0) == (7.0, 1)  # loaded from the cache
+    assert run(5.0) == (16.0, 0)  # the callee edited: compiled anew
