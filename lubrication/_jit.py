@@ -50,8 +50,8 @@ def specialise(template, name: str, **bound):
     are compiled into its code: a copy per choice carries only the code it calls.
     Numba files a compiled function under its qualified name, so each copy is named
     ``<template>_<name>`` and keeps its own entry in the disk cache; the cache is
-    keyed on the template's source file, so ``name`` must say what ``bound`` holds;
-    the same name with other globals is refused (ValueError).
+    keyed on sources, not on the globals bound, so ``name`` must say what ``bound``
+    holds; the same name with other globals is refused (ValueError).
     """
     key = (template.__module__, template.__qualname__, name)
     if _SPECIALISED.setdefault(key, bound) != bound:
@@ -69,9 +69,10 @@ def specialise(template, name: str, **bound):
 def sources_hash(*paths: Path) -> str:
     """The first 12 hex digits of the sha256 of the files ``paths``, in the order given.
 
-    numba checks only the source file of a function it loads from its cache, not
-    of the code compiled into it: a :func:`specialise` copy named with the hash
-    of every source it carries is compiled anew when any of them changes.
+    numba by itself checks only the source file of a function it loads from its
+    cache, not of the code compiled into it: a :func:`specialise` copy named with
+    the hash of every source it carries is compiled anew when any of them changes,
+    also where this numba's caching leaves :func:`project_stamp` out.
     """
     digest = hashlib.sha256()
     for path in paths:
