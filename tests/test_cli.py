@@ -79,7 +79,9 @@ def test_console_script_entry_point_and_validate_registration():
         assert command in proc.stdout
 
 
+@pytest.mark.slow
 def test_validate_quick_writes_the_report(tmp_path, capsys):
+    """Every quick group end to end (about three minutes when the kernels compile afresh)."""
     out_dir = tmp_path / "report"
     code, out, _ = run(capsys, "validate", "--quick", "-o", str(out_dir))
     assert code == 0, out
@@ -88,6 +90,37 @@ def test_validate_quick_writes_the_report(tmp_path, capsys):
     assert all(c["passed"] for c in checks)
     assert "Validation report" in (out_dir / "report.md").read_text()
     assert not list(out_dir.glob(".*.tmp"))  # nothing half-written left behind
+
+
+class _FailingGroup:
+    """A group of one comparison that fails: 2 measured against at most 1."""
+
+    @staticmethod
+    def run(outdir, quick):
+        from validation.checks import at_most
+
+        return [at_most("a bound this group breaks", 2.0, 1.0)], [], "One failing comparison."
+
+
+def test_validate_writes_the_report_and_fails_on_a_failed_comparison(tmp_path, capsys, monkeypatch):
+    """The command's own path (report, exit status, nothing half-written) with two groups standing in for all."""
+    from validation import lubrication_checks, suite
+
+    monkeypatch.setattr(suite, "GROUPS", {"Reynolds solver against the lubrication closed forms": lubrication_checks})
+    code, out, _ = run(capsys, "validate", "--quick", "-o", str(tmp_path / "passing"))
+    assert code == 0, out
+    checks = json.loads((tmp_path / "passing" / "validation.json").read_text())
+    assert checks and all({"name", "measured", "reference", "tolerance", "passed"} <= set(c) for c in checks)
+    assert all(c["passed"] for c in checks)
+    assert "Validation report" in (tmp_path / "passing" / "report.md").read_text()
+    assert not list((tmp_path / "passing").glob(".*.tmp"))
+
+    monkeypatch.setitem(suite.GROUPS, "a failing group", _FailingGroup)
+    code, out, _ = run(capsys, "validate", "--quick", "-o", str(tmp_path / "failing"))
+    assert code == 1 and "FAILED: a bound this group breaks: measured 2" in out
+    checks = json.loads((tmp_path / "failing" / "validation.json").read_text())
+    assert [c["name"] for c in checks if not c["passed"]] == ["a bound this group breaks"]
+    assert "**NO**" in (tmp_path / "failing" / "report.md").read_text()
 
 
 def test_stokes_flow_field_is_written_for_paraview(tmp_path, capsys):
