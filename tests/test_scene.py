@@ -3,6 +3,7 @@
 import dataclasses
 import json
 import math
+import sys
 
 import pytest
 
@@ -147,7 +148,8 @@ BAD = [
         "incline.alpha", "(-90, 90) deg", "95 deg"),
     bad("slope in rad too steep", edited(PHYSICAL, incline={"alpha": 1.6}),
         "incline.alpha", "(-90, 90) deg", "91.6732 deg"),
-    bad("rtol too loose", edited(PHYSICAL, run={"rtol": 0.5}), "run.rtol", "(0, 0.1]"),
+    bad("rtol too loose", edited(PHYSICAL, run={"rtol": 0.5}), "run.rtol", "[2.22045e-14, 0.1]"),
+    bad("rtol below rounding", edited(PHYSICAL, run={"rtol": 1e-20}), "run.rtol", "[2.22045e-14, 0.1]", "1e-20"),
     bad("negative run length", edited(PHYSICAL, run={"t_end": "-1 s"}), "run.t_end", "(0, inf) s"),
     bad("asperities wider than the gap", edited(PHYSICAL, contact={"sigma": "4 mm"}),
         "contact.sigma", "(0, delta) = (0, 0.00325) m"),
@@ -194,6 +196,17 @@ def test_bad_scenes_name_the_key_and_the_allowed_range(scene, words):
         parse_scene(scene)
     for word in words:
         assert word in str(info.value)
+
+
+def test_the_smallest_rtol_a_scene_takes_is_the_one_a_run_takes():
+    from dynamics.app.run import run_scene
+
+    smallest = 100 * sys.float_info.epsilon
+    tiny_run = {"rtol": smallest, "t_end_tau": 1e-6}
+    trajectory = run_scene(parse_scene(edited(GROUPS, run=tiny_run)))
+    assert trajectory.status == "completed"
+    with pytest.raises(SceneError, match=r"run\.rtol must be in \[2\.22045e-14, 0\.1\]"):
+        parse_scene(edited(GROUPS, run={**tiny_run, "rtol": math.nextafter(smallest, 0.0)}))
 
 
 def test_errors_come_from_toml_text_too():

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 from dataclasses import dataclass, field
 
 from dynamics.apparatus import PRESETS, Apparatus
@@ -163,7 +164,9 @@ class Run:
 
     t_end: float = key(help="duration (in units of tau in a dimensionless scene)", dimension="[time]", unit="s",
                        low=0.0, bounds="()", example="30 s")
-    rtol: float = key(1e-8, help="relative tolerance of the integrator", low=0.0, high=0.1, bounds="(]")
+    # below 100 eps the error control asks for more than rounding allows: simulate() refuses it too
+    rtol: float = key(1e-8, help="relative tolerance of the integrator", low=100 * sys.float_info.epsilon, high=0.1,
+                      bounds="[]")
     output_interval: float | None = key(None, help="rows of trajectory.csv at this interval (and at every event); "
                                         "'none': one row per integrator step", dimension="[time]", unit="s",
                                         low=0.0, bounds="()", example="0.1 s", reduced_unit="tau", none="none")
