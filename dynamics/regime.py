@@ -13,7 +13,11 @@ speed all constant over the second half, as a cavitating film allows, section
 Steady means: over the second half of the run, 1 - kappa and Omega_b vary by
 less than STEADY_SPREAD of their final values, and phi by less than
 STEADY_SPREAD rad. A full film approaching contact is never steady (its 1 - kappa
-keeps falling as t^-2), and rocking is not (phi swings).
+keeps falling as t^-2), and rocking is not (phi swings). The steady regimes and
+sedimentation are claims about what did not happen, so they need a run of at
+least SHORTEST_SETTLED tau: over less, nothing has had time to change, and a run
+of a microsecond would look steady. Such a run is "transient" unless it shows
+swings or a runaway.
 """
 
 from __future__ import annotations
@@ -31,6 +35,8 @@ REGIMES = ("runaway", "rocking", "sedimenting", "locked rolling", "sliding rolli
 #: Largest relative spread of 1 - kappa and Omega_b (and spread of phi, rad) over the second half
 #: of a run that counts as steady.
 STEADY_SPREAD = 0.01
+#: Shortest run (in tau, the time scale of the sinking) that can show a steady state or sedimentation.
+SHORTEST_SETTLED = 2.0
 _ROLLING = {1.0: "sliding rolling", 2.0: "locked rolling"}  # by contact phase code
 
 
@@ -91,8 +97,10 @@ def classify(trajectory) -> tuple[str, dict]:
                 "omega_b_tau_growth_late": growth, "stop_event": trajectory.event}
     if trajectory.event == "runaway" or (abs(turns) >= 1.0 and abs(omega_b[-1]) > abs(omega_b[late])):
         return "runaway", evidence
+    settled = c["t_tau"][-1] - c["t_tau"][0] >= SHORTEST_SETTLED
     phase = c.get("phase")
-    if phase is not None and phase[late:].size and np.all(phase[late:] == phase[-1]) and phase[-1] in _ROLLING:
+    if (settled and phase is not None and phase[late:].size and np.all(phase[late:] == phase[-1])
+            and phase[-1] in _ROLLING):
         spread = omega_b_spread / max(abs(float(omega_b[-1])), 1e-300)
         evidence["omega_b_relative_spread_late"] = spread
         if spread < STEADY_SPREAD:
@@ -102,8 +110,11 @@ def classify(trajectory) -> tuple[str, dict]:
                "phi_spread_late": phi_spread,
                "omega_b_relative_spread_late": omega_b_spread / max(abs(float(omega_b[-1])), 1e-300)}
     evidence.update(spreads)
-    if phase is None and omega_b[-1] != 0.0 and max(spreads.values()) < STEADY_SPREAD:
+    if settled and phase is None and omega_b[-1] != 0.0 and max(spreads.values()) < STEADY_SPREAD:
         return "steady rolling", evidence
     if kappa[-1] >= 0.95 and abs(turns) < 1.0:
-        return ("rocking" if swings >= 2 else "sedimenting"), evidence
+        if swings >= 2:
+            return "rocking", evidence
+        if settled:
+            return "sedimenting", evidence
     return "transient", evidence
