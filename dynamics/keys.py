@@ -73,8 +73,7 @@ class Key:
 
     def in_tau(self) -> Key:
         """This key in a dimensionless scene: a plain number in units of tau and b."""
-        return dataclasses.replace(self, dimension="[]", unit=self.reduced_unit, example="",
-                                   reduced_unit="")
+        return _in_tau(self)
 
     def check(self, name: str, value: Any) -> Any:
         """``value`` (already in SI) if it is allowed, else ValueError naming ``name`` and the range."""
@@ -100,6 +99,13 @@ class Key:
             msg = f"{name} must be {self.allowed()}, got {shown}"
             raise ValueError(msg)
         return x
+
+
+@functools.cache
+def _in_tau(spec: Key) -> Key:
+    """:meth:`Key.in_tau`, made once per key: a sweep reads each point's scene anew, and a copy of a
+    dataclass costs more than its hash."""
+    return dataclasses.replace(spec, dimension="[]", unit=spec.reduced_unit, example="", reduced_unit="")
 
 
 def key(default: Any = dataclasses.MISSING, **rule: Any) -> Any:

@@ -20,7 +20,7 @@ classification plus its integration, timed inside the loop.
 
 Building the scenes stays in Python: about 0.15 ms a point (its values applied
 to the base scene as they are, not written out and read back as TOML), against a
-median of about 0.8 ms of integration for a point of the regime map.
+median of about 0.65 ms of integration for a point of the regime map.
 """
 
 from __future__ import annotations
