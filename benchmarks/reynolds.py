@@ -442,6 +442,19 @@ def _machine() -> dict:
             "numba": numba.__version__}
 
 
+def speed_gauge_ms(loops: int = 1_000_000) -> float:
+    """Thread CPU time (ms) of a fixed pure-Python loop: how fast this machine runs at the moment.
+
+    The same code on the same machine takes 1.0-1.6 times its fastest time from minute to minute;
+    a benchmark that times it beside its own measurements says in which phase they were taken.
+    """
+    start = time.thread_time()
+    total = 0
+    for i in range(loops):
+        total += i * i
+    return 1e3 * (time.thread_time() - start)
+
+
 def run(one_minus_kappas=ONE_MINUS_KAPPAS, sommerfeld_cells=SOMMERFELD_CELLS, uniform_cells=UNIFORM_CELLS,
         sparse_cells=SPARSE_CELLS, conventional_cells=CONVENTIONAL_CELLS, targets=TARGETS,
         rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed=0) -> dict:

@@ -30,7 +30,10 @@ other jobs inflates wall time, not CPU time), the repeats interleaved and the
 paths in a shuffled order; a point's time is the median of its repeats. The
 batch's rows must equal the per-point rows (asserted: regimes, steps, numbers);
 CyRK's trajectories are classified like the others, and their agreement with
-the batch's regimes is reported.
+the batch's regimes is reported. A fixed pure-Python loop is timed before each
+repeat and around each call of the whole sample
+(:func:`benchmarks.reynolds.speed_gauge_ms`): the report says how fast the
+machine ran while it measured.
 
 (b) A map end to end: ``run_sweep`` on a local cluster of 2 single-threaded
 worker processes, wall time from the start of the cluster to the last row, for
@@ -68,7 +71,7 @@ if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.reynolds import _machine, speed_gauge_ms
 from dynamics.app.sweeps import batch, run
 from dynamics.app.sweeps.compiled import integrate_points
 from dynamics.app.sweeps.plot import save_regime_map
@@ -84,7 +87,7 @@ ROOT = Path(__file__).resolve().parents[1]
 MAP = ROOT / "dynamics" / "app" / "sweeps" / "examples" / "regime_map.toml"
 STORED = ROOT / "docs" / "sweeps" / "regime_map"
 SAMPLE = 200
-REPEATS = 3
+REPEATS = 5  # medians of five: the machine slows for minutes at a time
 WORKERS = 2
 PATHS = ("per point", "batch", "CyRK Radau", "CyRK LSODA")
 # The grids of (b): (start, stop, num) of s, the initial kappa and Upsilon (log-spaced). 1,000 points are every
@@ -180,8 +183,9 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
     results = {path: [None] * len(points) for path in paths}
     parse = [[] for _ in points]
     integration = [[] for _ in points]
-    whole, in_batch = [], [[] for _ in points]
+    whole, in_batch, gauge = [], [[] for _ in points], []
     for _ in range(repeats):
+        gauge.append(speed_gauge_ms())
         for i in rng.sample(range(len(points)), len(points)):
             for path in rng.sample(paths, len(paths)):
                 start = time.thread_time()
@@ -194,9 +198,11 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
             start = time.thread_time()
             integrate_points([p.y0], [p.args], [p.t_end_tau], [p.rtol], [p.terminal], batch.DIRECTION)
             integration[i].append(time.thread_time() - start)
+        gauge.append(speed_gauge_ms())
         start = time.thread_time()
         rows = batch.run_batch(sweep.base, sweep.source, points)
         whole.append((time.thread_time() - start) / len(points))
+        gauge.append(speed_gauge_ms())
         # each point's own clock inside the call (scene, integration, classification), as sweep.csv records it
         for i, row in enumerate(rows):
             in_batch[i].append(row["wall_time_s"])
@@ -230,7 +236,7 @@ def run_trajectories(sample: int = SAMPLE, repeats: int = REPEATS, seed: int = 0
             "regimes": {r: regimes.count(r) for r in sorted(set(regimes))}, "summary": summary, "ratios": ratios,
             "scene_building_ms": 1e3 * statistics.median(statistics.median(p) for p in parse),
             "integration_ms": 1e3 * statistics.median(statistics.median(t) for t in integration),
-            "cyrk_regime_agreement": agreement,
+            "cyrk_regime_agreement": agreement, "speed_gauge_ms": gauge,
             "median_steps": {k: statistics.median(v) for k, v in steps.items()},
             "points": [{"point": point_key(p), **p, "regime": regimes[i],
                         **{f"{path} ms": 1e3 * per_point[path][i] for path in paths}}
@@ -362,7 +368,10 @@ def to_markdown(results: dict) -> str:
             + ("met" if a["summary"]["batch"]["median_ms"] <= GOALS["trajectory_cpu_ms"] else "not met")
             + f" ({a['summary']['batch']['median_ms']:.2f} ms). A point inside the batch's call, by its own clock: "
             + ("met" if whole["point_median_ms"] <= GOALS["trajectory_cpu_ms"] else "not met")
-            + f" ({whole['point_median_ms']:.2f} ms). The old scipy-based path took 56 ms.", ""]
+            + f" ({whole['point_median_ms']:.2f} ms). The old scipy-based path took 56 ms.", "",
+            ("This machine's speed moves from minute to minute: a fixed pure-Python loop "
+             "(`benchmarks.reynolds.speed_gauge_ms`), timed before each repeat and before and after each call of the "
+             f"whole sample, took {min(a['speed_gauge_ms']):.0f}-{max(a['speed_gauge_ms']):.0f} ms during (a)."), ""]
     b = results["map"]
     out += [f"## (b) A map of {b['batch']['points']:,} points on {WORKERS} workers, end to end", "",
             f"{b['sweep']}: `run_sweep` on a local cluster of {WORKERS} single-threaded worker processes. Wall "
