@@ -1,13 +1,14 @@
-"""The numbers the regime is read from (dynamics.regime.late_half), against closed forms."""
+"""The regime of a run (dynamics.regime.classify) and the numbers it is read from (late_half), on constructed runs."""
 
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
-from dynamics.regime import late_half
+from dynamics.regime import SHORTEST_SETTLED, classify, late_half
 
 
 @pytest.mark.parametrize("cycles", [0.25, 3.0, 7.5])
@@ -41,8 +42,6 @@ def test_empty_or_unequal_columns_are_refused(columns):
 
 def _trajectory(t_tau, phi, kappa, omega_b, tau=1.0):
     """A trajectory as classify reads it (columns in units of tau)."""
-    from types import SimpleNamespace
-
     kappa = np.asarray(kappa, dtype=float)
     columns = {"t_tau": np.asarray(t_tau, dtype=float), "phi": np.asarray(phi, dtype=float), "kappa": kappa,
                "one_minus_kappa": 1.0 - kappa, "omega_b": np.asarray(omega_b, dtype=float) / tau}
@@ -53,9 +52,7 @@ def _trajectory(t_tau, phi, kappa, omega_b, tau=1.0):
                                                     (2.0, "steady rolling"), (50.0, "steady rolling")])
 def test_constant_motion_is_steady_only_over_a_run_long_enough_to_show_it(duration, expected):
     """Gap, angle and rolling rate constant: steady rolling, unless the run is too short for anything to change."""
-    from dynamics.regime import SHORTEST_SETTLED, classify
-
-    assert SHORTEST_SETTLED == 2.0
+    assert SHORTEST_SETTLED == 2.0  # the durations above straddle it
     t = np.linspace(0.0, duration, 101)
     regime, evidence = classify(_trajectory(t, np.full_like(t, 0.3), np.full_like(t, 0.9), np.full_like(t, 0.2)))
     assert regime == expected
@@ -67,8 +64,6 @@ def test_constant_motion_is_steady_only_over_a_run_long_enough_to_show_it(durati
 def test_sedimenting_needs_a_settled_run_and_rocking_its_swings(duration, swings, expected):
     """Near contact and without turns: two reversals of phi are rocking however short the run; no swing is
     sedimenting only over a run long enough for a swing to have shown."""
-    from dynamics.regime import classify
-
     t = np.linspace(0.0, duration, 2001)
     phi = 0.1 * np.sin(2.0 * math.pi * 2.6 * t / duration) * swings  # maxima at 3.5 pi and 4.5 pi after t/2
     kappa = 0.96 + 0.03 * t / duration
