@@ -385,8 +385,8 @@ def _check_domain(annulus: Annulus) -> None:
         raise ValueError(msg)
     omk = annulus.one_minus_kappa
     if not omk >= MIN_ONE_MINUS_KAPPA_EXACT * (1.0 - 1e-6):
-        msg = (f"one_minus_kappa must be in [{MIN_ONE_MINUS_KAPPA_EXACT:g}, 1] for the exact Stokes "
-               f"model, got {omk!r}")
+        msg = (f"one_minus_kappa = 1 - kappa must be in [{MIN_ONE_MINUS_KAPPA_EXACT:g}, 1] for the exact Stokes "
+               f"model (kappa at most 1 - {MIN_ONE_MINUS_KAPPA_EXACT:g}), got {omk:.6g}")
         raise ValueError(msg)
 
 
