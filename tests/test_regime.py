@@ -65,7 +65,7 @@ def test_sedimenting_needs_a_settled_run_and_rocking_its_swings(duration, swings
     """Near contact and without turns: two reversals of phi are rocking however short the run; no swing is
     sedimenting only over a run long enough for a swing to have shown."""
     t = np.linspace(0.0, duration, 2001)
-    phi = 0.1 * np.sin(2.0 * math.pi * 2.6 * t / duration) * swings  # maxima at 3.5 pi and 4.5 pi after t/2
+    phi = 0.1 * np.sin(2.0 * math.pi * 2.6 * t / duration) * swings  # extrema at phase 3.5 pi and 4.5 pi after t/2
     kappa = 0.96 + 0.03 * t / duration
     regime, evidence = classify(_trajectory(t, phi, kappa, np.zeros_like(t)))
     assert (regime, evidence["phi_reversals_late"]) == (expected, 2 * swings)
