@@ -29,7 +29,8 @@ from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 from dynamics.equations import full, reduced
 from dynamics.equations.forces import CAVITATING, ForceModel, force_model
-from dynamics.equations.limits import LIMIT_EVENTS, Limits, estimated_force_error, inertia_report, limit_message
+from dynamics.equations.limits import (LIMIT_EVENTS, Limits, estimated_force_error, inertia_report, limit_message,
+                                       reduced_reynolds)
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.integrate import METHODS, integrate
@@ -339,6 +340,7 @@ class _Run:
         self.tau = 1.0 if dimensionless else system.tau
         self.unit = "tau" if dimensionless else "s"
         self.t_eval = t_eval
+        self.inertia_corrected = False  # forces with the first inertial correction (full equations)
 
     # -- the models -----------------------------------------------------------------------
 
@@ -382,6 +384,7 @@ class _Run:
 
     def full(self, initial: Initial, model: ForceModel, contact) -> Trajectory:
         ap = self.system
+        self.inertia_corrected = model.inertia[0] > 0.0
         if contact is not None:
             from dynamics.contact import full as full_contact
 
@@ -453,13 +456,20 @@ class _Run:
             sampled = np.nonzero((kind[keep] & SAMPLE) != 0)[0]
             columns["t"][sampled] = self.t_eval[:sampled.size]
         rows = _row_labels(kind[keep], names[keep])
-        # the estimated inertial error at each Reynolds event's row, quoted in its message
+        # the estimated inertial error at each Reynolds event's row, quoted in its message: of the
+        # quasi-steady Stokes forces, and of the forces the run used when they carry the correction
         at_reynolds = np.nonzero(names[keep] == "reynolds")[0]
-        error_at = {}
+        error_at, corrected_at = {}, {}
         if at_reynolds.size and not self.dimensionless:
             row_columns = {name: column[at_reynolds] for name, column in columns.items()}
-            error_at = dict(zip(t_tau[at_reynolds], estimated_force_error(self.system, row_columns)))
-        status, message, event = self._status(fields, columns, error_at)
+            errors = estimated_force_error(self.system, row_columns)
+            error_at = dict(zip(t_tau[at_reynolds], errors))
+            if self.inertia_corrected:
+                from lubrication.inertia import corrected_error_estimate
+
+                left = corrected_error_estimate(errors, reduced_reynolds(self.system, row_columns))
+                corrected_at = dict(zip(t_tau[at_reynolds], left))
+        status, message, event = self._status(fields, columns, error_at, corrected_at)
         on_event = np.nonzero((kind & EVENT) != 0)[0]
         along = [{"name": names[i], "t": float(fields["t"][i]) * tau} for i in on_event]
         warned = [e for e in along if e["name"] in LIMIT_EVENTS and e["name"] != event]
@@ -475,12 +485,14 @@ class _Run:
         if trajectory.t.size:
             trajectory.regime, trajectory.evidence = classify(trajectory)
             if not self.dimensionless:
-                trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns)
+                trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns,
+                                                            corrected=self.inertia_corrected)
         if warned:
             t_of = {id(e): float(fields["t"][i]) for e, i in zip(along, on_event)}  # in tau, as error_at's keys
             trajectory.info["limits_passed"] = [
                 dict(w, reason=limit_message(w["name"], self.limits, self._when(t_of[id(w)]),
-                                             error_at.get(t_of[id(w)]))) for w in warned]
+                                             error_at.get(t_of[id(w)]), corrected_at.get(t_of[id(w)])))
+                for w in warned]
         if self.t_eval is not None:  # the rows asked for: the samples, events, start, and the end once
             shown = (kept & (START | SAMPLE | EVENT)) != 0
             last = kept.size - 1
@@ -496,14 +508,20 @@ class _Run:
     def _when(self, t_tau: float) -> str:
         return f"t = {t_tau * self.tau:.6g} {self.unit}"
 
-    def _status(self, fields: dict, columns: dict, error_at: dict) -> tuple[str, str, str]:
-        """(status, message with units, stop event); ``error_at``: the estimated inertial error by event time."""
+    def _status(self, fields: dict, columns: dict, error_at: dict, corrected_at: dict) -> tuple[str, str, str]:
+        """(status, message with units, stop event).
+
+        ``error_at``, ``corrected_at``: by event time, the estimated inertial error of the quasi-steady
+        Stokes forces and, for forces with the first inertial correction, of those forces.
+        """
         t_last = float(columns["t_tau"][-1]) if columns["t"].size else 0.0
         stop = fields["stop"]
         if fields["status_code"] == 0:
             return "completed", f"reached t_end = {self.t_end:.6g} {self.unit}", ""
         if fields["status_code"] == 1 and stop in LIMIT_EVENTS:
-            return "stopped", limit_message(stop, self.limits, self._when(t_last), error_at.get(t_last)), stop
+            message = limit_message(stop, self.limits, self._when(t_last), error_at.get(t_last),
+                                    corrected_at.get(t_last))
+            return "stopped", message, stop
         if fields.get("code") == INTERRUPTED:
             by = fields["message"].split(" at t = ")[0]  # "interrupted" or "interrupted by SIGTERM"
             return "interrupted", f"{by} at {self._when(t_last)}", ""

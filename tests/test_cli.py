@@ -208,3 +208,32 @@ def test_report_folders_that_cannot_be_written_are_bad_input(tmp_path, capsys, c
     code, _, err = run(capsys, command, "--quick", "-o", target)
     assert code == 2 and words in err and "Traceback" not in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+def _report(max_error, re_star, corrected=None):
+    """An inertia report (dynamics.equations.limits.inertia_report) with the entries the warning reads."""
+    report = {"max_estimated_force_error": max_error, "t_at_max_estimated_force_error": 0.03,
+              "max_reduced_reynolds": re_star, "t_at_max_reduced_reynolds": 0.03,
+              "estimated_force_error_at_max_reduced_reynolds": max_error}
+    if corrected is not None:
+        report["corrected_forces"] = {"max_estimated_force_error": corrected, "t_at_max_estimated_force_error": 0.02,
+                                      "measured_to_reduced_reynolds": 30.0}
+    return report
+
+
+@pytest.mark.parametrize(("report", "expected"), [
+    (_report(0.05, 0.8), ""),
+    (_report(0.28, 4.9), "the quasi-steady Stokes forces may be in error by up to 28%"),
+    (_report(0.28, 4.9, corrected=0.011), ""),
+    (_report(2.2, 29.0, corrected=0.15), "the inertia-corrected forces may be in error by up to 15% (at t = 0.02 s)"),
+    (_report(1.5, 31.0, corrected=0.09), "past Re* = 30, the largest at which the correction was compared"),
+], ids=["plain, small", "plain, large", "corrected, small", "corrected, large", "corrected, past the comparisons"])
+def test_inertia_warning_judges_the_forces_the_run_used(report, expected):
+    """`snail run` warns of the inertial error of the forces it used: the plain forces' first-order
+    error, or what the first inertial correction leaves and whether Re* went past its comparisons."""
+    from dynamics.app.cli import _inertia_warning
+
+    warning = _inertia_warning(report)
+    assert (expected in warning) if expected else warning == ""
+    if "corrected_forces" in report and warning:
+        assert "quasi-steady" not in warning

@@ -8,6 +8,7 @@ Cartesian form of (2.1)-(2.2) for reading the force off the right-hand side.
 """
 
 import math
+from types import SimpleNamespace
 
 import numba
 import numpy as np
@@ -17,7 +18,15 @@ from dynamics.apparatus import preset
 from dynamics.equations import full
 from dynamics.equations.forces import closed_form, force_model, reynolds, stokes_exact
 from lubrication.geometry import Annulus, Fluid, Motion
-from lubrication.inertia import inertial_force_correction
+from lubrication.inertia import (
+    CORRECTED_MEASURED_TO,
+    CORRECTED_SECOND_ORDER,
+    INTERPOLATION_ABSOLUTE,
+    INTERPOLATION_RELATIVE,
+    corrected_error_estimate,
+    inertial_error_estimate,
+    inertial_force_correction,
+)
 
 APPARATUS_GAP = 0.325 / 0.8
 
@@ -28,7 +37,10 @@ def _sweep_forces(d, kappa, w_a, w_b, reduced, mesh=(144, 6)):
     Units of the sweep: a = 1, mu = 1 and the largest wall speed V = 1, so that Re = delta/nu
     and rho = Re/delta; forces per unit length in mu V (lubrication.navier_stokes.InertialSweep).
     On 144 x 6 cells the corrected model's error comes out as on the inertial mesh (288 x 10)
-    to 2e-5 of the plain error, at a fifth of the cost.
+    to 2e-5 of the plain error, at a fifth of the cost. Each row also carries the scale of the
+    relative errors, |R_chi_a W_a| + |R_chi_b W_b| (the exact Stokes f_chi of each wall's
+    rotation alone), and the estimated error of the corrected forces
+    (lubrication.inertia.corrected_error_estimate) at that state.
     """
     from lubrication.navier_stokes import inertial_sweep
 
@@ -40,8 +52,13 @@ def _sweep_forces(d, kappa, w_a, w_b, reduced, mesh=(144, 6)):
         fluid = Fluid(nu=d / re, rho=re / d)
         plain = stokes_exact().forces(annulus, motion, fluid)
         corrected = stokes_exact(inertia=True, rho=fluid.rho).forces(annulus, motion, fluid)
-        rows.append((re * d, navier_stokes, np.array([plain.f_eps, plain.f_chi]),
-                     np.array([corrected.f_eps, corrected.f_chi]), corrected.T_a - plain.T_a))
+        scale = (abs(stokes_exact().forces(annulus, Motion(omega_a=motion.omega_a), fluid).f_chi)
+                 + abs(stokes_exact().forces(annulus, Motion(omega_b=motion.omega_b), fluid).f_chi))
+        first_order = inertial_error_estimate(kappa, d, motion.omega_a * re, motion.omega_b * (1.0 + d) * re)
+        rows.append(SimpleNamespace(
+            reduced=re * d, navier_stokes=navier_stokes, plain=np.array([plain.f_eps, plain.f_chi]),
+            corrected=np.array([corrected.f_eps, corrected.f_chi]), torque_change=corrected.T_a - plain.T_a,
+            scale=scale, estimate=float(corrected_error_estimate(first_order, re * d))))
     return rows
 
 
@@ -54,12 +71,13 @@ def test_corrected_forces_against_navier_stokes():
     of the correction at Re* = 3 in the stored sweeps): 3.5% of the plain error. The
     correction is a pure f_eps and leaves f_chi and T_a alone (they change at O(Re*^2)).
     """
-    for reduced, navier_stokes, plain, corrected, torque_change in _sweep_forces(
-            APPARATUS_GAP, 0.45, 1.0, 0.7, (0.3, 1.0, 3.0)):
-        plain_error = np.linalg.norm(navier_stokes - plain)
-        assert plain_error > 0.01 * reduced * abs(plain[1])  # the inertia the correction must remove
-        assert np.linalg.norm(navier_stokes - corrected) < 0.035 * plain_error
-        assert corrected[1] == plain[1] and torque_change == 0.0
+    for row in _sweep_forces(APPARATUS_GAP, 0.45, 1.0, 0.7, (0.3, 1.0, 3.0)):
+        plain_error = np.linalg.norm(row.navier_stokes - row.plain)
+        assert plain_error > 0.01 * row.reduced * abs(row.plain[1])  # the inertia the correction must remove
+        left = np.linalg.norm(row.navier_stokes - row.corrected)
+        assert left < 0.035 * plain_error
+        assert row.corrected[1] == row.plain[1] and row.torque_change == 0.0
+        assert left / row.scale <= row.estimate  # what a run reports of its corrected forces bounds what they leave
 
 
 def test_corrected_forces_leave_a_second_order_error():
@@ -93,10 +111,29 @@ def test_corrected_forces_against_navier_stokes_more_motions(kappa, walls):
     """As above for the outer wall leading and for counter-rotating walls (f_chi nearly cancels,
     so the plain relative error is 4 at Re* = 1), up to Re* = 10, where the O(Re*^2) remainder
     reaches 5% of the correction (measured: 0.3% at Re* = 3, 5.3% at 10 at kappa = 0.75)."""
-    for reduced, navier_stokes, plain, corrected, _ in _sweep_forces(APPARATUS_GAP, kappa, *walls,
-                                                                      (0.3, 1.0, 3.0, 10.0)):
-        bound = 0.035 if reduced <= 3.0 else 0.08
-        assert np.linalg.norm(navier_stokes - corrected) < bound * np.linalg.norm(navier_stokes - plain)
+    for row in _sweep_forces(APPARATUS_GAP, kappa, *walls, (0.3, 1.0, 3.0, 10.0)):
+        bound = 0.035 if row.reduced <= 3.0 else 0.08
+        left = np.linalg.norm(row.navier_stokes - row.corrected)
+        assert left < bound * np.linalg.norm(row.navier_stokes - row.plain)
+        assert left / row.scale <= row.estimate
+
+
+def test_corrected_error_estimate_against_the_stored_newton_sweeps():
+    """The constants of lubrication.inertia.corrected_error_estimate against the Newton solutions of
+    docs/inertia/inertia.json (validation.inertia): the second-order coefficient bounds what the
+    corrected forces leave at the table's nodes over every sweep and Re*, within 5% of the largest;
+    the interpolation bounds are those the study checks, above what it measured; and the estimate is
+    trusted up to the largest Re* the sweeps reached."""
+    import json
+    from pathlib import Path
+
+    study = json.loads((Path(__file__).resolve().parents[1] / "docs" / "inertia" / "inertia.json").read_text())
+    per_re2 = [left / re**2 for row in study["sweeps"]
+               for left, re in zip(row["corrected_error"], row["reduced_reynolds"])]
+    assert max(per_re2) <= CORRECTED_SECOND_ORDER <= 1.05 * max(per_re2)
+    accuracy = study["table_accuracy"]
+    assert accuracy["max_relative"] <= INTERPOLATION_RELATIVE and accuracy["max_absolute_g"] <= INTERPOLATION_ABSOLUTE
+    assert CORRECTED_MEASURED_TO == max(row["max_reduced_reynolds"] for row in study["sweeps"])
 
 
 @pytest.mark.parametrize("make", [closed_form, stokes_exact])

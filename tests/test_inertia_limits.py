@@ -49,6 +49,11 @@ def test_reynolds_message_quotes_the_estimate_at_the_event():
     assert "max_gap_reynolds = 2 at t = 0.5 s" in with_error and "estimated 13.7%" in with_error
     bound = limit_message("reynolds", guard, "t = 0.5 s")
     assert "up to about 20% (Re*/10" in bound
+    # forces with the first inertial correction: the message quotes what they leave, not the plain error
+    corrected = limit_message("reynolds", guard, "t = 0.5 s", error=0.137, corrected=0.0021)
+    assert "max_gap_reynolds = 2 at t = 0.5 s" in corrected
+    assert "first inertial correction, which leaves at most an estimated 0.21% there" in corrected
+    assert "quasi-steady Stokes forces by 13.7%" in corrected and "the model's assumption" not in corrected
     with pytest.raises(ValueError, match="not a limit event"):
         limit_message("touch", guard, "t = 0 s")
 
@@ -105,6 +110,40 @@ def test_report_gives_the_error_at_the_worst_reynolds_number_and_the_worst_error
     re_star = limits.reduced_reynolds(ap, columns)
     assert np.all(errors <= re_star / 10.0)
     assert errors[1] > 0.01 * re_star[1]  # the inertial force does not cancel with f_chi
+
+
+def test_report_of_corrected_forces_gives_what_the_correction_leaves():
+    """With corrected=True the report adds the largest estimated error of the corrected forces
+    (lubrication.inertia.corrected_error_estimate of each row's first-order error and Re*) and its
+    time; the plain entries are unchanged, and a report without the correction has no such entry."""
+    from lubrication.inertia import CORRECTED_MEASURED_TO, corrected_error_estimate
+
+    ap = preset("aluminium")
+    per = ap.delta**2 / (ap.nu * ap.a)
+    walls = np.array([0.5, 3.0, 1.0]) / (per * ap.a)  # Re* = 0.5, 3, 1 from the inner wall
+    columns = _columns(ap, [0.0, 0.2, 0.4], 0.5, 10.0, 10.0 + walls, 10.0)
+    plain, corrected = inertia_report(ap, columns), inertia_report(ap, columns, corrected=True)
+    assert "corrected_forces" not in plain
+    left = corrected.pop("corrected_forces")
+    assert corrected == plain
+    expected = corrected_error_estimate(limits.estimated_force_error(ap, columns),
+                                        limits.reduced_reynolds(ap, columns))
+    assert left["max_estimated_force_error"] == expected.max() and left["t_at_max_estimated_force_error"] == 0.2
+    assert left["measured_to_reduced_reynolds"] == CORRECTED_MEASURED_TO
+
+
+def test_a_corrected_run_stopped_at_the_reynolds_limit_quotes_what_its_forces_leave():
+    """simulate() with the inertia-corrected forces: the stop message and the report speak of those forces."""
+    from dynamics import Initial, simulate
+    from dynamics.equations.forces import stokes_exact
+
+    ap = preset("aluminium", alpha=math.radians(5.0))
+    for forces, corrected in ((stokes_exact(), False), (stokes_exact(inertia=True, rho=ap.rho), True)):
+        run = simulate(ap, Initial(0.5, 0.5), 0.2, forces=forces, limits=Limits(on_invalid="stop"))
+        assert run.status == "stopped" and run.event == "reynolds"
+        assert ("first inertial correction" in run.message) is corrected
+        assert ("the model's assumption" in run.message) is not corrected
+        assert ("corrected_forces" in run.info["inertia"]) is corrected
 
 
 def test_frame_force_of_a_rigidly_turning_device():

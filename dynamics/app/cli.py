@@ -365,7 +365,6 @@ def _run_scene(args) -> int:
 def _run_scene_drawing(args, figures) -> int:
     from dynamics.app.folder import FolderError, OutputFolder
     from dynamics.app.output import write_outputs
-    from dynamics.equations.limits import WARN_FORCE_ERROR
     from dynamics.app.run import run_scene
     from dynamics.scenes import SceneError, load_scene, resolved_toml
 
@@ -398,14 +397,9 @@ def _run_scene_drawing(args, figures) -> int:
             figures.send(trajectory)  # drawn while the other outputs are written
         for passed in trajectory.info.get("limits_passed", []):
             print(f"snail run: warning: {passed['reason']}", file=sys.stderr)
-        inertia = trajectory.info.get("inertia", {})
-        if inertia.get("max_estimated_force_error", 0.0) > WARN_FORCE_ERROR:
-            print(f"snail run: warning: fluid inertia: the quasi-steady Stokes forces may be in error by up to "
-                  f"{inertia['max_estimated_force_error']:.0%} (at t = {inertia['t_at_max_estimated_force_error']:.3g} "
-                  f"s; at the largest gap Reynolds number, Re* = {inertia['max_reduced_reynolds']:.2g} at "
-                  f"t = {inertia['t_at_max_reduced_reynolds']:.3g} s, by "
-                  f"{inertia['estimated_force_error_at_max_reduced_reynolds']:.0%}); see summary.json 'inertia'",
-                  file=sys.stderr)
+        warning = _inertia_warning(trajectory.info.get("inertia", {}))
+        if warning:
+            print(f"snail run: warning: fluid inertia: {warning}; see summary.json 'inertia'", file=sys.stderr)
         info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
                              plot=figures is not None, max_rows=scene.run.max_rows,
                              draw=figures.png if figures is not None else None)
@@ -419,6 +413,33 @@ def _run_scene_drawing(args, figures) -> int:
               f"({'b/tau' if info['dimensionless'] else 'm/s'}), {info['steps']} steps in "
               f"{info['wall_time_s']:.2f} s; outputs in {folder.path}/")
     return 0 if trajectory.status == "completed" else 1
+
+
+def _inertia_warning(inertia: dict) -> str:
+    """What a run's inertia report (:func:`dynamics.equations.limits.inertia_report`) warns of, or "".
+
+    The forces the run used are judged: the quasi-steady Stokes forces by their
+    first-order error, forces with the first inertial correction by what that
+    leaves, and by whether the run went past the Reynolds numbers at which it was measured.
+    """
+    from dynamics.equations.limits import WARN_FORCE_ERROR
+
+    corrected = inertia.get("corrected_forces")
+    if corrected is not None:
+        beyond = inertia["max_reduced_reynolds"] > corrected["measured_to_reduced_reynolds"]
+        if corrected["max_estimated_force_error"] <= WARN_FORCE_ERROR and not beyond:
+            return ""
+        past = (f"; Re* reached {inertia['max_reduced_reynolds']:.3g} (t = {inertia['t_at_max_reduced_reynolds']:.3g}"
+                f" s), past Re* = {corrected['measured_to_reduced_reynolds']:g}, the largest at which the "
+                "correction was compared with Navier-Stokes solutions") if beyond else ""
+        return (f"the inertia-corrected forces may be in error by up to {corrected['max_estimated_force_error']:.0%} "
+                f"(at t = {corrected['t_at_max_estimated_force_error']:.3g} s){past}")
+    if inertia.get("max_estimated_force_error", 0.0) <= WARN_FORCE_ERROR:
+        return ""
+    return (f"the quasi-steady Stokes forces may be in error by up to {inertia['max_estimated_force_error']:.0%} "
+            f"(at t = {inertia['t_at_max_estimated_force_error']:.3g} s; at the largest gap Reynolds number, "
+            f"Re* = {inertia['max_reduced_reynolds']:.2g} at t = {inertia['t_at_max_reduced_reynolds']:.3g} s, by "
+            f"{inertia['estimated_force_error_at_max_reduced_reynolds']:.0%})")
 
 
 def build_parser() -> argparse.ArgumentParser:

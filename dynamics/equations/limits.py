@@ -88,23 +88,33 @@ class Limits:
         return math.inf if self.max_gap_reynolds is None else self.max_gap_reynolds
 
 
-def limit_message(name: str, limits: Limits, when: str, error: float | None = None) -> str:
+def limit_message(name: str, limits: Limits, when: str, error: float | None = None,
+                  corrected: float | None = None) -> str:
     """Why a run stopped (or what it went past) at the limit event ``name``, at ``when`` (a time with units).
 
-    ``error``: the estimated relative force error at the event's state
-    (:func:`estimated_force_error`); without it the Reynolds message quotes the
-    bound Re*/10 that holds for every apparatus and wall motion at first order.
+    ``error``: the estimated relative force error of the quasi-steady Stokes
+    forces at the event's state (:func:`estimated_force_error`); without it the
+    Reynolds message quotes the bound Re*/10 that holds for every apparatus and
+    wall motion at first order. ``corrected``: for forces that carry the first
+    inertial correction, the estimated error they leave there
+    (:func:`lubrication.inertia.corrected_error_estimate`), which the message
+    then quotes as the run's.
     """
     if name == "gap_floor":
         return (f"1 - kappa fell to gap_floor = {limits.gap_floor:g} at {when}: the smooth-wall continuum model "
                 "has no meaning at such gaps (contact needs a contact model)")
     if name == "reynolds":
+        reached = f"the gap Reynolds number Re* reached max_gap_reynolds = {limits.reynolds:g} at {when}: "
+        if corrected is not None:
+            plain = "" if error is None else f"; the quasi-steady Stokes forces by {_percent(error)}"
+            return (reached + "the forces carry the first inertial correction, which leaves at most an estimated "
+                    f"{_percent(corrected)} there (the table's interpolation, and second order in Re*{plain}; "
+                    "docs/inertia/inertia.md)")
         if error is None:
             size = f"up to about {_percent(0.1 * limits.reynolds)} (Re*/10, the bound for any apparatus)"
         else:
             size = f"by an estimated {_percent(error)} there"
-        return (f"the gap Reynolds number Re* reached max_gap_reynolds = {limits.reynolds:g} at {when}: the "
-                f"quasi-steady Stokes forces, the model's assumption, are in error {size} "
+        return (reached + f"the quasi-steady Stokes forces, the model's assumption, are in error {size} "
                 "(first order in Re*, docs/inertia/inertia.md)")
     if name == "runaway":
         return f"runaway: the outer cylinder turned max_turns = {limits.max_turns:g} times by {when}"
@@ -190,7 +200,7 @@ def _frame_force_magnitudes(p, eps, eps_dot, chi_dot, omega_a, omega_b):
     return out
 
 
-def inertia_report(apparatus, columns: dict) -> dict:
+def inertia_report(apparatus, columns: dict, corrected: bool = False) -> dict:
     """How far a run's quasi-steady Stokes forces can be trusted, from its SI columns.
 
     Returns, each with the time at which it occurred: the largest reduced Reynolds
@@ -203,7 +213,11 @@ def inertia_report(apparatus, columns: dict) -> dict:
     frame that (2.1)-(2.2) as printed leave out, over m'_a g
     (:func:`frame_force_over_weight`); the squeeze Reynolds number
     |eps'| delta / nu, which the estimate does not cover; and the Stokes number
-    delta^2/(nu tau) of the unsteady inertia no steady solve sees.
+    delta^2/(nu tau) of the unsteady inertia no steady solve sees. With
+    ``corrected`` (forces that carry the first inertial correction), also
+    ``corrected_forces``: the largest estimated error those forces leave
+    (:func:`lubrication.inertia.corrected_error_estimate`), its time, and the
+    Re* up to which that estimate was measured.
     """
     ap = apparatus
     t = columns["t"]
@@ -220,11 +234,21 @@ def inertia_report(apparatus, columns: dict) -> dict:
     _, max_err, t_err = worst(errors)
     _, max_first, t_first = worst(first_order_force_over_weight(ap, columns))
     _, max_frame, t_frame = worst(frame_force_over_weight(ap, columns))
-    return {"max_reduced_reynolds": max_re, "t_at_max_reduced_reynolds": t_re,
-            "estimated_force_error_at_max_reduced_reynolds": float(errors[i_re]) if errors.size else 0.0,
-            "max_estimated_force_error": max_err, "t_at_max_estimated_force_error": t_err,
-            "force_error_scale": "|R_chi_a W_a| + |R_chi_b W_b|: the Stokes force of the wall rotations",
-            "max_first_order_force_over_weight": max_first, "t_at_max_first_order_force": t_first,
-            "max_frame_force_over_weight": max_frame, "t_at_max_frame_force": t_frame,
-            "max_squeeze_reynolds": float(np.abs(columns["kappa_dot"]).max(initial=0.0) * ap.delta**2 / ap.nu),
-            "stokes_number": ap.delta**2 / (ap.nu * ap.tau)}
+    report = {"max_reduced_reynolds": max_re, "t_at_max_reduced_reynolds": t_re,
+              "estimated_force_error_at_max_reduced_reynolds": float(errors[i_re]) if errors.size else 0.0,
+              "max_estimated_force_error": max_err, "t_at_max_estimated_force_error": t_err,
+              "force_error_scale": "|R_chi_a W_a| + |R_chi_b W_b|: the Stokes force of the wall rotations",
+              "max_first_order_force_over_weight": max_first, "t_at_max_first_order_force": t_first,
+              "max_frame_force_over_weight": max_frame, "t_at_max_frame_force": t_frame,
+              "max_squeeze_reynolds": float(np.abs(columns["kappa_dot"]).max(initial=0.0) * ap.delta**2 / ap.nu),
+              "stokes_number": ap.delta**2 / (ap.nu * ap.tau)}
+    if corrected:
+        from lubrication.inertia import CORRECTED_MEASURED_TO, corrected_error_estimate
+
+        _, max_left, t_left = worst(corrected_error_estimate(errors, re_star))
+        report["corrected_forces"] = {
+            "max_estimated_force_error": max_left, "t_at_max_estimated_force_error": t_left,
+            "measured_to_reduced_reynolds": CORRECTED_MEASURED_TO,
+            "basis": "the table's interpolation and the second-order remainder, against Newton solutions of "
+                     "steady Navier-Stokes flow (docs/inertia/inertia.md)"}
+    return report
