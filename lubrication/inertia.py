@@ -101,8 +101,8 @@ from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_r
 
 __all__ = ["CORRECTED_MEASURED_TO", "CORRECTED_SECOND_ORDER", "INTERPOLATION_ABSOLUTE", "INTERPOLATION_RELATIVE",
            "KAPPA_AXIS", "TABLE_COLUMNS", "build_error_table", "corrected_error_estimate", "first_order_f_eps",
-           "frame_forces", "inertial_error_estimate", "inertial_force_correction", "reduced_reynolds", "relative_reynolds",
-           "small_eccentricity_forces", "table_row", "thin_gap_small_kappa"]
+           "frame_forces", "inertial_error_estimate", "inertial_force_correction", "reduced_reynolds",
+           "relative_reynolds", "small_eccentricity_forces", "table_row", "thin_gap_small_kappa"]
 
 
 def frame_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
@@ -378,7 +378,7 @@ INTERPOLATION_RELATIVE, INTERPOLATION_ABSOLUTE = 0.03, 1e-3
 CORRECTED_MEASURED_TO = 30.0
 
 
-def corrected_error_estimate(first_order_error, reduced_reynolds):
+def corrected_error_estimate(first_order_error, re_star):
     """Estimated relative force error of the inertia-corrected forces (``stokes_exact(inertia=True)``, ...).
 
     What adding the tabulated first inertial correction leaves: the table's
@@ -395,11 +395,11 @@ def corrected_error_estimate(first_order_error, reduced_reynolds):
     first_order_error : float or array_like
         G Re*, the estimated error of the quasi-steady Stokes forces
         (:func:`inertial_error_estimate`).
-    reduced_reynolds : float or array_like
+    re_star : float or array_like
         Re* of the same state (:func:`reduced_reynolds`).
     """
     error = np.asarray(first_order_error, dtype=float)
-    re_star = np.asarray(reduced_reynolds, dtype=float)
+    re_star = np.asarray(re_star, dtype=float)
     interpolation = np.maximum(INTERPOLATION_RELATIVE * error, INTERPOLATION_ABSOLUTE * re_star)
     return interpolation + CORRECTED_SECOND_ORDER * re_star**2
 

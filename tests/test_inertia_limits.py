@@ -13,8 +13,17 @@ import pytest
 
 from dynamics.apparatus import preset
 from dynamics.equations import limits
-from dynamics.equations.limits import MAX_REYNOLDS, Limits, inertia_report, limit_message
-from lubrication.inertia import inertial_error_estimate, small_eccentricity_forces, thin_gap_small_kappa
+from dynamics.equations.limits import (
+    MAX_REYNOLDS,
+    Limits,
+    inertia_report,
+    limit_message,
+)
+from lubrication.inertia import (
+    inertial_error_estimate,
+    small_eccentricity_forces,
+    thin_gap_small_kappa,
+)
 
 
 def _columns(ap, t, kappa, phi_dot, omega_a, omega_b, kappa_dot=0.0):
