@@ -53,7 +53,7 @@ from dynamics.equations.special import decay_exponent
 from dynamics.keys import check_fields, key
 from lubrication.geometry import check_finite, check_range
 
-__all__ = ["Apparatus", "STEEL", "ALUMINIUM", "PRESETS", "preset", "STANDARD_GRAVITY"]
+__all__ = ["ALUMINIUM", "DENSITY", "PRESETS", "STANDARD_GRAVITY", "STEEL", "Apparatus", "preset"]
 
 STANDARD_GRAVITY = 9.80665  # m/s^2
 
@@ -62,10 +62,14 @@ def _positive(name: str, value: float, unit: str) -> float:
     return check_range(name, value, 0.0, math.inf, low_open=True, unit=unit)
 
 
-_LENGTH = {"dimension": "[length]", "unit": "m", "low": 0.0, "bounds": "()", "example": "0.8 cm"}
-_MASS = {"dimension": "[mass]", "unit": "kg", "low": 0.0, "bounds": "()", "example": "158 g"}
-_DENSITY = {"dimension": "[mass] / [length] ** 3", "unit": "kg/m^3", "low": 0.0, "bounds": "()",
-            "example": "0.95 g/cm^3"}
+# The ranges are those of devices from a micrometre to ten metres, of gases to mercury, and of
+# viscosities from light gases to bitumen: wide, and finite, so that every derived group of a device
+# inside them is a finite number (a viscosity of 1e-300 m^2/s or a mass of 1e200 kg is no device).
+_LENGTH = {"dimension": "[length]", "unit": "m", "low": 1e-6, "high": 10.0, "bounds": "[]", "example": "0.8 cm"}
+_MASS = {"dimension": "[mass]", "unit": "kg", "low": 1e-12, "high": 1e6, "bounds": "[]", "example": "158 g"}
+#: Densities of fluids and of solid inner cylinders (kg/m^3).
+DENSITY = {"dimension": "[mass] / [length] ** 3", "unit": "kg/m^3", "low": 1e-2, "high": 1e5,
+           "bounds": "[]", "example": "0.95 g/cm^3"}
 
 
 @dataclass(frozen=True)
@@ -99,9 +103,10 @@ class Apparatus:
     ------
     ValueError
         Naming the field and its allowed range, for non-finite numbers,
-        non-positive lengths, masses, viscosity or density, ``a >= b``,
-        ``alpha`` outside (-pi/2, pi/2), or an inner cylinder lighter than
-        the fluid it displaces.
+        lengths, masses, viscosity, density or gravity outside their ranges
+        (those of the keys), ``a >= b``, ``alpha`` outside (-pi/2, pi/2), an
+        inner cylinder lighter than the fluid it displaces, or a combination
+        whose derived groups (tau, Upsilon, s, mu_, V*) are not finite.
     """
 
     a: float = key(help="inner radius", section="apparatus", **_LENGTH)
@@ -111,14 +116,15 @@ class Apparatus:
     m_a: float = key(help="mass of the inner (solid) cylinder", section="apparatus", **_MASS)
     m_b: float = key(help="mass of the outer (thin shell) cylinder", section="apparatus", **_MASS)
     nu: float = key(help="kinematic viscosity of the fluid", section="fluid", dimension="[length] ** 2 / [time]",
-                    unit="m^2/s", low=0.0, bounds="()", example="200 cSt")
-    rho: float = key(help="density of the fluid", section="fluid", **_DENSITY)
+                    unit="m^2/s", low=1e-9, high=1e3, bounds="[]", example="200 cSt")
+    rho: float = key(help="density of the fluid", section="fluid", **DENSITY)
     alpha: float = key(help="inclination of the plane, positive down the slope", section="incline",
                        unit="deg", low=-90.0, high=90.0, bounds="()", scale=math.pi / 180.0, example="2.4 deg")
     g: float = key(STANDARD_GRAVITY, help="gravitational acceleration", section="incline",
-                   dimension="[length] / [time] ** 2", unit="m/s^2", low=0.0, bounds="()", example="9.81 m/s^2")
+                   dimension="[length] / [time] ** 2", unit="m/s^2", low=1e-3, high=1e4, bounds="[]",
+                   example="9.81 m/s^2")
     m_f_ends: float = key(0.0, help="fluid outside the gap, carried by the outer cylinder", section="apparatus",
-                          **dict(_MASS, bounds="[)"))
+                          **dict(_MASS, low=0.0))
 
     def __post_init__(self):
         check_fields(self)
@@ -130,6 +136,15 @@ class Apparatus:
         if not self.m_a_reduced > 0.0:
             msg = (f"m_a must be in (m''_a, inf) = ({self.m_a_displaced:g}, inf) kg: the inner "
                    f"cylinder must be heavier than the fluid it displaces, got {self.m_a!r}")
+            raise ValueError(msg)
+        derived = {"tau": self.tau, "upsilon": self.upsilon, "s": self.s, "mu_ratio": self.mu_ratio,
+                   "v_star": self.v_star}
+        bad = [f"{name} = {value:g}" for name, value in derived.items() if not 0.0 < abs(value) < math.inf
+               and not (name == "s" and value == 0.0)]
+        if bad:
+            msg = (f"the apparatus gives {', '.join(bad)}, which no run can use: its keys a, b, length, m_a, m_b, "
+                   "nu, rho and g lie in their ranges but combine to an extreme device; bring m_a further above "
+                   f"the displaced fluid m''_a = {self.m_a_displaced:g} kg, or the other keys closer together")
             raise ValueError(msg)
 
     @classmethod

@@ -6,9 +6,13 @@ from dataclasses import dataclass
 
 from dynamics.keys import check_fields, key
 
-__all__ = ["Initial"]
+__all__ = ["MAX_RATE", "Initial"]
 
-_RATE = {"dimension": "1 / [time]", "unit": "rad/s", "example": "1 rad/s", "reduced_unit": "rad/tau"}
+# Rates beyond a million per second (or per tau) are no release of a rolling device: bounded so
+# that the forces and Reynolds numbers they give stay finite numbers.
+MAX_RATE = 1e6
+_RATE = {"dimension": "1 / [time]", "unit": "rad/s", "example": "1 rad/s", "reduced_unit": "rad/tau",
+         "low": -MAX_RATE, "high": MAX_RATE}
 
 
 @dataclass(frozen=True)
@@ -21,9 +25,9 @@ class Initial:
 
     kappa: float = key(0.0, help="eccentricity eps/delta", low=0.0, high=1.0, bounds="[)")
     phi: float = key(0.0, help="angle of the line of centres B->A from the upward vertical", unit="deg",
-                     scale=0.017453292519943295, example="30 deg")
+                     scale=0.017453292519943295, example="30 deg", low=-1e6, high=1e6)
     kappa_dot: float = key(0.0, help="d kappa/dt", dimension="1 / [time]", unit="1/s", example="0.1 / s",
-                           reduced_unit="1/tau")
+                           reduced_unit="1/tau", low=-MAX_RATE, high=MAX_RATE)
     phi_dot: float = key(0.0, help="d phi/dt", **_RATE)
     omega_a: float = key(0.0, help="spin Omega_a of the inner cylinder", **_RATE)
     omega_b: float = key(0.0, help="spin Omega_b of the outer cylinder, X_b' = b Omega_b", **_RATE)

@@ -90,7 +90,7 @@ class Key:
                 raise ValueError(msg)
             return value
         try:
-            x = float(value)
+            x = math.nan if isinstance(value, (str, bytes)) else float(value)  # "0.5" is no number
         except (TypeError, ValueError):
             x = math.nan
         if isinstance(value, bool) or not self.contains(x / self.scale):

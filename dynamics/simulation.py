@@ -29,15 +29,15 @@ from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 from dynamics.equations import full, reduced
 from dynamics.equations.forces import CAVITATING, ForceModel, force_model
-from dynamics.equations.limits import (LIMIT_EVENTS, Limits, estimated_force_error, inertia_report, limit_message,
-                                       reduced_reynolds)
+from dynamics.equations.limits import (LIMIT_EVENTS, MIN_GAP_FLOOR_FULL, Limits, estimated_force_error,
+                                       inertia_report, limit_message, reduced_reynolds)
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.integrate import METHODS, integrate
 from dynamics.regime import classify
 from lubrication.geometry import check_range
 
-__all__ = ["PHASE_CODES", "Initial", "Trajectory", "simulate"]
+__all__ = ["MAX_ROWS", "MAX_STEPS", "PHASE_CODES", "Initial", "Trajectory", "simulate"]
 
 #: Contact phases as numbers in the trajectory table.
 PHASE_CODES = {FREE: 0, SLIDING: 1, LOCKED: 2}
@@ -154,7 +154,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     t_eval : array_like, optional
         Output rows at these increasing times in [0, t_end] instead (and at every event).
     max_steps : int
-        Accepted steps after which the run stops unfinished.
+        Accepted steps after which the run stops unfinished, in [1, :data:`MAX_STEPS`].
     progress : callable, optional
         ``progress(t)`` is called now and then with the time reached.
     frame_terms : {"paper", "quasi-steady"}
@@ -191,19 +191,34 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
     rtol = check_range("rtol", rtol, 100 * np.finfo(float).eps, 0.1, high_open=False)
+    if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)) or not 1 <= max_steps <= MAX_STEPS:
+        msg = f"max_steps must be an integer in [1, {MAX_STEPS:g}], got {max_steps!r}"
+        raise ValueError(msg)
+    if progress is not None and not callable(progress):
+        msg = f"progress must be a function of the time reached, or None, got {progress!r}"
+        raise TypeError(msg)
     if output_interval is not None:
         if t_eval is not None:
             msg = "give output_interval or t_eval, not both"
             raise ValueError(msg)
         output_interval = check_range("output_interval", output_interval, 0.0, t_end, low_open=True,
                                       high_open=False, unit=unit)
-        count = int(math.floor(t_end / output_interval * (1.0 + 1e-12)))
+        count = math.floor(t_end / output_interval * (1.0 + 1e-12))
+        if count >= MAX_ROWS:
+            msg = (f"output_interval = {output_interval:g} {unit} asks for {count + 1:.3g} rows over t_end = "
+                   f"{t_end:g} {unit}, more than {MAX_ROWS:g}: lengthen the interval")
+            raise ValueError(msg)
         t_eval = output_interval * np.arange(count + 1)
     if t_eval is not None:
-        t_eval = np.asarray(t_eval, dtype=float)
-        if t_eval.ndim != 1 or t_eval.size == 0 or np.any(np.diff(t_eval) <= 0) or t_eval[0] < 0 \
-                or t_eval[-1] > t_end:
-            msg = f"t_eval must be a non-empty increasing array of times in [0, t_end] = [0, {t_end:g}] {unit}"
+        try:
+            t_eval = np.asarray(t_eval, dtype=float)
+        except (TypeError, ValueError) as err:
+            msg = f"t_eval must be an array of times in [0, t_end] = [0, {t_end:g}] {unit}, got {t_eval!r}"
+            raise ValueError(msg) from err
+        if t_eval.ndim != 1 or t_eval.size == 0 or not np.all(np.isfinite(t_eval)) or np.any(np.diff(t_eval) <= 0) \
+                or t_eval[0] < 0 or t_eval[-1] > t_end or t_eval.size > MAX_ROWS:
+            msg = (f"t_eval must be a non-empty increasing array of at most {MAX_ROWS:g} finite times in "
+                   f"[0, t_end] = [0, {t_end:g}] {unit}")
             raise ValueError(msg)
     if not isinstance(limits, Limits):
         msg = f"limits must be a Limits, got {type(limits).__name__}"
@@ -232,6 +247,12 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     return trajectory
 
 
+#: Most accepted steps a run may take: every step is kept in memory (about 300 bytes a step at the
+#: peak, with its columns), so ten million steps need about 3 GB.
+MAX_STEPS = 10_000_000
+#: Most rows a run may be asked for at given times (output_interval, t_eval): about 1 GB at the peak.
+MAX_ROWS = 2_000_000
+
 #: 1 - kappa0 below which the full equations are not run with scipy's LSODA (measured: it stalls there).
 LSODA_NEAR_CONTACT = 1e-3
 
@@ -250,6 +271,10 @@ def _check_start(initial: Initial, limits: Limits, contact, equations: str, meth
                "'radau' (the compiled Radau IIA, the default) or 'BDF'")
         raise ValueError(msg)
     one_minus = initial.gap
+    if contact is None and equations == "full" and limits.gap_floor < MIN_GAP_FLOOR_FULL:
+        msg = (f"run.gap_floor must be in [{MIN_GAP_FLOOR_FULL:g}, 1) for the full equations, which cannot follow "
+               f"the squeeze film closer to contact in double precision; got {limits.gap_floor:g}")
+        raise ValueError(msg)
     if contact is None and one_minus <= limits.gap_floor:
         msg = (f"initial.kappa must leave 1 - kappa above the gap floor {limits.gap_floor:g} (the run would stop "
                f"at once), got 1 - kappa = {one_minus:.3g}; lower initial.kappa or the gap floor")

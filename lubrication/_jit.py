@@ -3,7 +3,11 @@
 Compiled code is cached on disk (``cache=True``), releases the GIL (``nogil``,
 so that threads and dask workers run kernels side by side) and keeps IEEE
 semantics (``fastmath=False``: a validation code must not trade NaN and
-rounding guarantees for speed). ``NUMBA_DISABLE_JIT=1`` runs every kernel as
+rounding guarantees for speed), division included (``error_model="numpy"``: a
+division by zero gives inf or NaN, which the integrator and the Python faces
+report, where numba's default would raise an exception that a call through a
+first-class function, as the engine makes, cannot pass on: the process went on
+with undefined state and crashed). ``NUMBA_DISABLE_JIT=1`` runs every kernel as
 plain Python, for coverage and debugging.
 
 The disk cache is keyed on every source of the packages ``dynamics`` and
@@ -28,7 +32,7 @@ from numba.core import caching
 __all__ = ["JIT_OPTIONS", "jit", "project_stamp", "sources_hash", "sources_stamp", "specialise"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
-JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False}
+JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False, "error_model": "numpy"}
 
 
 def jit(func=None, **extra):

@@ -15,8 +15,8 @@ from __future__ import annotations
 import math
 from dataclasses import astuple, dataclass, field
 
-__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "RESISTANCE_NAMES", "Resistance",
-           "check_finite", "check_range"]
+__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "NotANumberError", "RESISTANCE_NAMES",
+           "Resistance", "check_finite", "check_range"]
 
 #: The five resistance coefficients of a full film, in the order every table and array of
 #: the project uses: f_eps per eps', then f_chi and T_a per W_a = Omega_a - chi', then
@@ -27,8 +27,20 @@ RESISTANCE_NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_
 MIN_ONE_MINUS_KAPPA = 1e-150
 
 
+class NotANumberError(TypeError, ValueError):
+    """A value of the wrong type where a number belongs: a TypeError, and a ValueError for the callers
+    that report every bad value alike (as numpy's ``AxisError`` is both a ValueError and an IndexError)."""
+
+
 def check_finite(name: str, value: float) -> float:
-    """Return ``value`` as a float, or raise naming ``name`` if it is not a finite number."""
+    """Return ``value`` as a float, or raise naming ``name`` if it is not a finite number.
+
+    Strings and booleans are refused although ``float`` takes them: "0.5" in a
+    field is a mistake to report where it is made, not a number to guess.
+    """
+    if isinstance(value, (str, bytes, bool)):
+        msg = f"{name} must be a finite number, got {value!r}"
+        raise NotANumberError(msg)
     try:
         x = float(value)
     except (TypeError, ValueError) as err:

@@ -36,21 +36,21 @@ def _kwargs(**overrides):
 # -- validation ---------------------------------------------------------------
 
 @pytest.mark.parametrize(("field", "value", "words"), [
-    ("a", 0.0, "a must be in (0, inf) m"),
-    ("a", -1.0, "a must be in (0, inf) m"),
+    ("a", 0.0, "a must be in [1e-06, 10] m"),
+    ("a", -1.0, "a must be in [1e-06, 10] m"),
     ("b", 0.008, "b must be in (a, inf)"),
     ("b", 0.005, "b must be in (a, inf)"),
-    ("length", 0.0, "length must be in (0, inf) m"),
-    ("m_a", 0.0, "m_a must be in (0, inf) kg"),
-    ("m_b", -0.047, "m_b must be in (0, inf) kg"),
-    ("nu", 0.0, "nu must be in (0, inf) m^2/s"),
-    ("rho", -1.0, "rho must be in (0, inf) kg/m^3"),
+    ("length", 0.0, "length must be in [1e-06, 10] m"),
+    ("m_a", 0.0, "m_a must be in [1e-12, 1e+06] kg"),
+    ("m_b", -0.047, "m_b must be in [1e-12, 1e+06] kg"),
+    ("nu", 0.0, "nu must be in [1e-09, 1000] m^2/s"),
+    ("rho", -1.0, "rho must be in [0.01, 100000] kg/m^3"),
     ("alpha", math.pi / 2, "alpha must be in (-90, 90) deg, got 1.5707963267948966 rad = 90 deg"),
     ("alpha", -2.0, "alpha must be in (-90, 90) deg"),
-    ("g", 0.0, "g must be in (0, inf)"),
-    ("m_f_ends", -1e-3, "m_f_ends must be in [0, inf) kg"),
-    ("a", math.nan, "a must be in (0, inf) m, got nan"),
-    ("nu", math.inf, "nu must be in (0, inf) m^2/s, got inf"),
+    ("g", 0.0, "g must be in [0.001, 10000]"),
+    ("m_f_ends", -1e-3, "m_f_ends must be in [0, 1e+06] kg"),
+    ("a", math.nan, "a must be in [1e-06, 10] m, got nan"),
+    ("nu", math.inf, "nu must be in [1e-09, 1000] m^2/s, got inf"),
     ("alpha", "steep", "alpha must be in (-90, 90) deg, got 'steep'"),
 ])
 def test_invalid_field_is_named_with_its_range(field, value, words):

@@ -54,9 +54,10 @@ def test_negative_numbers_in_scientific_notation_are_values(capsys):
         ([*GEOMETRY, "--kappa", "1"], "kappa must be in [0, 1)"),
         ([*GEOMETRY, "--kappa", "0.5", "--nu", "-1e-4"], "nu must be in (0, inf)"),
         ([*GEOMETRY, "--kappa", "0.5", "--rho", "0"], "rho must be in (0, inf)"),
-        ([*GEOMETRY, "--kappa", "nan"], "kappa must be a finite number"),
+        ([*GEOMETRY, "--kappa", "nan"], "not a finite number: 'nan'"),
+        ([*GEOMETRY, "--kappa", "0.5", "--p-ref", "nan"], "not a finite number: 'nan'"),
         ([*GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n (cells around the gap)"),
-        ([*GEOMETRY, "--kappa", "abc"], "not a number"),
+        ([*GEOMETRY, "--kappa", "abc"], "not a finite number"),
         ([*GEOMETRY, "--kappa", "0.5", "--model", "magic"], "invalid choice"),
         ([*GEOMETRY], "required: --kappa"),
     ],
@@ -175,11 +176,20 @@ def test_all_models_report_each_component_against_its_own_size():
 @pytest.mark.parametrize(("args", "words"), [
     (["--model", "closed-form", "--cavitation", "jfo"], "--cavitation jfo needs the Reynolds solver"),
     (["--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1"], "--p-ref must be in (0, inf) Pa"),
-    (["--model", "reynolds", "--cavitation", "jfo", "--p-cav", "2e5"], "--p-cav must be in [0, 101325)"),
+    (["--model", "reynolds", "--cavitation", "jfo", "--p-cav", "2e5"], "--p-cav must be in [0, 101325] Pa"),
 ])
 def test_cavitation_options_are_checked(capsys, args, words):
     code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", *args)
     assert code == 2 and words in err and out == ""
+
+
+@pytest.mark.parametrize("cavitation", ["half-sommerfeld", "swift-stieber"])
+def test_the_textbook_cut_at_the_reference_pressure_is_allowed(capsys, cavitation):
+    """p_cav = p_ref, no margin: the classical half-Sommerfeld and Swift-Stieber films (lubrication.cavitation)."""
+    code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--omega-a", "1", "--model", "reynolds",
+                         "--cavitation", cavitation, "--p-cav", "101325", "--p-ref", "101325", "--json")
+    assert code == 0, err
+    assert json.loads(out)["p_cav"] == json.loads(out)["p_ref"] == 101325
 
 
 def test_a_gap_ratio_that_overflows_is_refused(capsys):

@@ -623,6 +623,39 @@ def test_non_finite_at_the_start(fun, jac):
     np.testing.assert_array_equal(run.kind, [START, END])
 
 
+_ZERO_DIVISION = """
+import numpy as np
+from dynamics.engine import integrate
+from lubrication._jit import jit
+
+@jit
+def divides(t, y, args):
+    divisor = 0.0 if t > 1.0 else 1.0
+    return np.array([-y[0] / divisor])
+
+@jit
+def divides_jac(t, y, args):
+    return np.array([[-1.0]])
+
+run = integrate(divides, divides_jac, (0.0, 3.0), [1.0], args=np.array([1.0]), rtol=1e-6, atol=1e-9)
+print(run.status, run.message)
+"""
+
+
+def test_a_division_by_zero_in_compiled_code_fails_the_run_and_not_the_process(tmp_path):
+    """Compiled with numba's default error model, 1/0 raised ZeroDivisionError inside a function the engine
+    calls through a pointer, which cannot pass it on: the engine went on with undefined state and the
+    process crashed (exit 139). The project's jit policy gives IEEE inf instead, which the engine reports."""
+    script = tmp_path / "divides.py"  # a file, where numba can cache the kernels
+    script.write_text(_ZERO_DIVISION)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=600,
+                          cwd=Path(__file__).resolve().parents[1],
+                          env=dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1])))
+    assert done.returncode == 0, done.stderr[-2000:]
+    status, message = done.stdout.strip().split(" ", 1)
+    assert status == "-1" and "not finite" in message and "Exception ignored" not in done.stderr
+
+
 def test_max_steps():
     run = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6, max_steps=5)
     assert run.code == MAX_STEPS_REACHED and run.status == -1 and run.steps == 5

@@ -473,9 +473,9 @@ def test_position_columns_are_numpys_unwrap_of_the_angle():
     (lambda: Limits(gap_floor=1.0), "gap_floor must be in (0, 1)"),
     (lambda: Limits(max_turns=0.0), "max_turns must be in (0, inf)"),
     (lambda: run(FIG2, 10.0, 0.5, 0.0, method="RK45"), "method must be one of radau, Radau, BDF, LSODA"),
-    (lambda: Initial(kappa=0.5, phi=math.nan), "phi must be in (-inf, inf)"),
+    (lambda: Initial(kappa=0.5, phi=math.nan), "phi must be in [-1e+06, 1e+06] deg"),
     (lambda: run(FIG2, 10.0, 0.5, 0.0, t_eval=[0.0, 20.0]),
-     "t_eval must be a non-empty increasing array of times in [0, t_end]"),
+     "t_eval must be a non-empty increasing array of at most 2e+06 finite times in [0, t_end]"),
     (lambda: simulate(FIG2, Initial(0.5, 0.0, kappa_dot=0.1), 10.0), "initial.kappa_dot and initial.phi_dot must be 0"),
 ], ids=["kappa=1", "kappa<0", "gap=0", "beyond-gap-floor", "t_end=0", "gap_floor=1", "max_turns=0", "method",
         "phi=nan", "t_eval-beyond-t_end", "kappa_dot-reduced"])

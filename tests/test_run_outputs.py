@@ -25,7 +25,7 @@ from pathlib import Path
 
 import pytest
 
-LONG = ["--t-end", "20000", "--set", "run.rtol=1e-10", "--set", "run.gap_floor=1e-15"]
+LONG = ["--t-end", "20000", "--set", "run.rtol=1e-10", "--set", "run.gap_floor=1e-10"]
 
 
 def _signals_as_on_a_terminal():

@@ -147,7 +147,7 @@ def test_steady_rolling_in_contact_is_a_regime_with_its_numbers():
         ('[axes]\n"groups.slope" = [0.1]\n', "unknown key groups.slope"),
         ('[axes]\n"initial.kappa" = [0.2, 1.2]\n', "axes.initial.kappa = 1.2: initial.kappa must be in [0, 1)"),
         ('[axes]\n"initial.kappa" = {start = 0.1, stop = 0.9}\n', "axes.initial.kappa: num missing"),
-        ('[axes]\n"groups.s" = {start = 0.1, stop = 0.9, num = 0}\n', "axes.groups.s.num must be an integer >= 1"),
+        ('[axes]\n"groups.s" = {start = 0.1, stop = 0.9, num = 0}\n', "axes.groups.s.num must be an integer in [1, 10,000,000]"),
         ('[axes]\n"groups.s" = {random = "normal", low = 0, high = 1, num = 3}\n', "axes.groups.s.random"),
         ('[axes]\n"groups.s" = {random = "uniform", low = 0, high = 1, num = 3}\n'
          '"initial.kappa" = {random = "uniform", low = 0, high = 0.9, num = 4}\n', "axes.initial.kappa.num = 4"),

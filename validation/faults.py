@@ -40,14 +40,32 @@ class Case:
     argv: tuple[str, ...] = ()
     call: object = None
     scene: str = ""  # TOML written to a file named by "{scene}" in argv
+    sweep: str = ""  # TOML written to a file named by "{sweep}" in argv
 
 
 def _api(name):
     def call():
         from dynamics import Initial, Limits, preset, simulate
+        from lubrication import Annulus, Fluid, Motion
 
         steel = preset("steel")
-        if name == "negative t_end":
+        if name == "a length as a string":
+            Annulus(a="0.008", b=0.01125)
+        elif name == "a rate as a string":
+            Motion(chi_dot="1")
+        elif name == "a density as a string":
+            Fluid(nu=2e-4, rho="960")
+        elif name == "max_steps 0":
+            simulate(steel, Initial(0.5), 1.0, max_steps=0)
+        elif name == "t_eval with nan":
+            simulate(steel, Initial(0.5), 1.0, t_eval=[0.0, math.nan, 1.0])
+        elif name == "progress 3":
+            simulate(steel, Initial(0.5), 1.0, progress=3)
+        elif name == "output interval 1e-9":
+            simulate(steel, Initial(0.5), 10.0, output_interval=1e-9)
+        elif name == "gravity 1e300":
+            preset("steel", nu=2e-4, g=1e300)
+        elif name == "negative t_end":
             simulate(steel, Initial(0.5), -1.0)
         elif name == "kappa 1.5":
             Initial(kappa=1.5)
@@ -64,12 +82,22 @@ def _api(name):
     return call
 
 
+#: A sweep of two points, for the cases that must be refused before it runs.
+_SWEEP = """[base]
+apparatus = {preset = "steel"}
+run = {t_end = 0.01}
+[axes]
+"initial.kappa" = {start = 0.1, stop = 0.5, num = 2}
+"initial.phi" = {start = 0.1, stop = 0.5, num = 2}
+"initial.omega_a" = {start = 0.0, stop = 1.0, num = 2}
+"""
+
 CASES: tuple[Case, ...] = (
     Case("scene: unknown key", "exit 2", ("initial.colour", "allowed keys"), ("run", "--set", "initial.colour=red")),
     Case("scene: kappa0 = 1", "exit 2", ("initial.kappa", "[0, 1)"), ("run", "--set", "initial.kappa=1.0")),
     Case("scene: start within 1e-10 of contact (beyond the gap floor)", "exit 2",
          ("initial.kappa", "gap floor"), ("run", "--set", "initial.kappa=0.9999999999")),
-    Case("scene: negative viscosity", "exit 2", ("fluid.nu", "(0, inf) m^2/s"), ("run", "--set", "fluid.nu=-200 cSt")),
+    Case("scene: negative viscosity", "exit 2", ("fluid.nu", "[1e-09, 1000] m^2/s"), ("run", "--set", "fluid.nu=-200 cSt")),
     Case("scene: wrong unit", "exit 2", ("incline.alpha", "unit"), ("run", "--set", "incline.alpha=2 kg")),
     Case("scene: gap floor out of range", "exit 2", ("run.gap_floor", "(0, 1)"), ("run", "--set", "run.gap_floor=2")),
     Case("scene: negative Reynolds limit", "exit 2", ("run.max_gap_reynolds", "(0, inf)", "'none'"),
@@ -101,6 +129,37 @@ CASES: tuple[Case, ...] = (
          ("validate", "--quick", "-o", "/proc/snail")),
     Case("report folder of snail corrections: through a file", "exit 2", ("is a file, not a folder",),
          ("corrections", "--quick", "-o", "{file}/out")),
+    Case("scene: gravity 1e300 (crashed the process: its groups overflow)", "exit 2", ("incline.g", "[0.001, 10000]"),
+         ("run", "--set", "incline.g=1e300")),
+    Case("scene: viscosity 1e-300", "exit 2", ("fluid.nu", "[1e-09, 1000] m^2/s"), ("run", "--set", "fluid.nu=1e-300")),
+    Case("scene: viscosity 1e300", "exit 2", ("fluid.nu", "[1e-09, 1000] m^2/s"), ("run", "--set", "fluid.nu=1e300")),
+    Case("scene: length 1e-300 m", "exit 2", ("apparatus.length", "[1e-06, 10] m"),
+         ("run", "--set", "apparatus.length=1e-300")),
+    Case("scene: inner density 1e30 kg/m^3", "exit 2", ("apparatus.rho_a", "[0.01, 100000] kg/m^3"),
+         ("run", "--set", "apparatus.rho_a=1e30")),
+    Case("scene: inner mass 1e200 kg", "exit 2", ("apparatus.m_a", "[1e-12, 1e+06] kg"),
+         ("run", "--set", "apparatus.m_a=1e200")),
+    Case("scene: initial spin 1e200 rad/s", "exit 2", ("initial.omega_a", "[-1e+06, 1e+06] rad/s"),
+         ("run", "--set", "initial.omega_a=1e200")),
+    Case("scene: an override that spans two lines", "exit 2", ("spans lines",),
+         ("run", "--set", "initial.kappa=0.3\nphi = 9")),
+    Case("scene: more integrator steps than memory holds", "exit 2", ("run.max_steps", "[1, 10000000]"),
+         ("run", "--set", "run.max_steps=1000000000000")),
+    Case("scene: start 1e-12 from contact, gap floor 1e-13 (the Newton iteration failed there)", "exit 2",
+         ("run.gap_floor", "[1e-10, 1)", "full equations"),
+         ("run", "--set", "initial.one_minus_kappa=1e-12", "--set", "run.gap_floor=1e-13")),
+    Case("sweep: output path is a file", "exit 2", ("is a file, not a folder",),
+         ("sweep", "{sweep}", "-o", "{file}"), sweep=_SWEEP),
+    Case("sweep: scheduler address malformed (wrote a table first)", "exit 2", ("--scheduler", "cannot reach"),
+         ("sweep", "{sweep}", "-o", "{tmp}/out", "--scheduler", "not-an-address"), sweep=_SWEEP),
+    Case("sweep: 1e15 points (hung, eating memory)", "exit 2", ("10,000,000", "points"),
+         ("sweep", "{sweep}", "-o", "{tmp}/out"), sweep=_SWEEP.replace("num = 2", "num = 100000")),
+    Case("sweep: num = 1e12 (MemoryError)", "exit 2", ("num must be an integer in [1, 10,000,000]",),
+         ("sweep", "{sweep}", "-o", "{tmp}/out"), sweep=_SWEEP.replace("num = 2", "num = 1000000000000")),
+    Case("sweep: 100,000 workers", "exit 2", ("workers", "cores"),
+         ("sweep", "{sweep}", "-o", "{tmp}/out", "--workers", "100000"), sweep=_SWEEP),
+    Case("forces: reference pressure not a number", "exit 2", ("not a finite number: 'nan'",),
+         ("forces", *GEOMETRY, "--kappa", "0.5", "--p-ref", "nan")),
     Case("forces: kappa = 1", "exit 2", ("kappa must be in [0, 1)",), ("forces", *GEOMETRY, "--kappa", "1")),
     Case("forces: b < a", "exit 2", ("b must be greater than a",), ("forces", "--a", "0.02", "--b", "0.01",
                                                                   "--kappa", "0.5")),
@@ -110,7 +169,21 @@ CASES: tuple[Case, ...] = (
          ("forces", *GEOMETRY, "--kappa", "0.5", "--cavitation", "jfo")),
     Case("forces: negative reference pressure", "exit 2", ("--p-ref must be in (0, inf) Pa",),
          ("forces", *GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1")),
-    Case("forces: not a number", "exit 2", ("not a number",), ("forces", *GEOMETRY, "--kappa", "abc")),
+    Case("forces: not a number", "exit 2", ("not a finite number",), ("forces", *GEOMETRY, "--kappa", "abc")),
+    Case("API: Annulus(a='0.008')", "NotANumberError", ("a must be a finite number",),
+         call=_api("a length as a string")),
+    Case("API: Motion(chi_dot='1')", "NotANumberError", ("chi_dot must be a finite number",),
+         call=_api("a rate as a string")),
+    Case("API: Fluid(rho='960')", "NotANumberError", ("rho must be a finite number",),
+         call=_api("a density as a string")),
+    Case("API: simulate with max_steps=0", "ValueError", ("max_steps must be an integer in [1, 1e+07]",),
+         call=_api("max_steps 0")),
+    Case("API: simulate with NaN in t_eval", "ValueError", ("t_eval", "finite times"), call=_api("t_eval with nan")),
+    Case("API: simulate with progress=3", "TypeError", ("progress must be a function",), call=_api("progress 3")),
+    Case("API: output_interval=1e-9 s over 10 s (7.45 GiB of rows)", "ValueError", ("output_interval", "rows"),
+         call=_api("output interval 1e-9")),
+    Case("API: preset('steel', g=1e300) (killed the interpreter)", "ValueError", ("g must be in [0.001, 10000]",),
+         call=_api("gravity 1e300")),
     Case("API: simulate with a negative t_end", "ValueError", ("t_end must be in (0, inf) s",),
          call=_api("negative t_end")),
     Case("API: Initial(kappa=1.5)", "ValueError", ("kappa must be in [0, 1)", "1.5"), call=_api("kappa 1.5")),
@@ -150,6 +223,7 @@ class Outcome:
 def run_case(case: Case) -> Outcome:
     """Run one case in a fresh temporary folder."""
     from dynamics.app.cli import main
+    from dynamics.app.sweeps.run import max_workers
 
     if case.call is not None:
         try:
@@ -163,8 +237,10 @@ def run_case(case: Case) -> Outcome:
         (tmp / "full").mkdir()
         (tmp / "full" / "notes.txt").write_text("keep me")
         (tmp / "scene.toml").write_text(case.scene, encoding="utf-8")
-        argv = [a.replace("{scene}", str(tmp / "scene.toml")).replace("{file}", str(tmp / "file"))
-                .replace("{full}", str(tmp / "full")) for a in case.argv]
+        (tmp / "sweep.toml").write_text(case.sweep, encoding="utf-8")
+        argv = [a.replace("{scene}", str(tmp / "scene.toml")).replace("{sweep}", str(tmp / "sweep.toml"))
+                .replace("{file}", str(tmp / "file")).replace("{full}", str(tmp / "full"))
+                .replace("{tmp}", str(tmp)) for a in case.argv]
         if argv and argv[0] == "run" and "-o" not in argv:
             argv += ["-o", str(tmp / "out")]
         if argv and argv[0] == "run":
@@ -177,8 +253,9 @@ def run_case(case: Case) -> Outcome:
                 code = exit_.code
         text = (err.getvalue() + out.getvalue()).replace(str(tmp), "<tmp>")
         text = re.sub(r"steps in [0-9.]+ s", "steps in <time> s", text)  # wall times vary from run to run
+        text = text.replace(f"[1, {max_workers()}] (this machine's cores)", "[1, <cores>] (this machine's cores)")
         left = code == 2 and (tmp / "out").exists()  # refused input leaves nothing; a stopped run keeps its data
-        intact = (tmp / "full" / "notes.txt").read_text() == "keep me"
+        intact = (tmp / "full" / "notes.txt").read_text() == "keep me" and (tmp / "file").read_text() == "a file"
         return Outcome(case, f"exit {code}", text, "Traceback" not in text and not left and intact)
 
 

@@ -59,11 +59,15 @@ def _join_negative_values(argv: list[str]) -> list[str]:
 
 
 def _number(text: str) -> float:
+    """A finite number (every numeric option is a length, a rate, a pressure or a tolerance)."""
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
-        msg = f"not a number: {text!r}"
-        raise argparse.ArgumentTypeError(msg) from None
+        value = math.nan
+    if not math.isfinite(value):
+        msg = f"not a finite number: {text!r}"
+        raise argparse.ArgumentTypeError(msg)
+    return value
 
 
 def _add_forces(subparsers) -> None:
@@ -165,7 +169,8 @@ def _check_cavitation_options(args) -> None:
         msg = f"--cavitation {args.cavitation} needs the Reynolds solver: --model reynolds (or all)"
         raise ValueError(msg)
     check_range("--p-ref", args.p_ref, 0.0, math.inf, low_open=True, unit="Pa (absolute)")
-    check_range("--p-cav", args.p_cav, 0.0, args.p_ref, unit=f"Pa (absolute, below --p-ref = {args.p_ref:g} Pa)")
+    check_range("--p-cav", args.p_cav, 0.0, args.p_ref, high_open=False,
+                unit=f"Pa (absolute, at most --p-ref = {args.p_ref:g} Pa)")
 
 
 def _check_ends_options(args) -> None:

@@ -84,7 +84,20 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         **trajectory.info,
     }
     out.update(extra)
-    return out
+    return _json_numbers(out)
+
+
+def _json_numbers(value):
+    """``value`` with every non-finite float (an overflowed estimate, say) as None: JSON has no inf or NaN."""
+    if isinstance(value, dict):
+        return {k: _json_numbers(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_numbers(v) for v in value]
+    if isinstance(value, (float, np.floating)):
+        return float(value) if np.isfinite(value) else None
+    if isinstance(value, np.integer):
+        return int(value)
+    return value
 
 
 def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",

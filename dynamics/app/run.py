@@ -92,7 +92,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     try:
         trajectory = simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
                               contact=contact, limits=limits, method=method, rtol=run.rtol,
-                              output_interval=run.output_interval, progress=progress,
+                              output_interval=run.output_interval, max_steps=run.max_steps, progress=progress,
                               frame_terms=model.frame_terms)
     except ValueError as err:
         raise SceneError(_resolution_reason(model, reach) if reach is not None and "gap floor" in str(err)

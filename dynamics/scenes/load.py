@@ -343,9 +343,9 @@ def _cavitation(raw: Mapping[str, Any]) -> Cavitation | None:
     if "model" not in values:
         raise _missing(["cavitation.model"], "a [cavitation] section names its model")
     cavitation = Cavitation(**values)
-    if not cavitation.p_cav < cavitation.p_ref:
-        msg = (f"cavitation.p_cav must be in [0, p_ref) = [0, {cavitation.p_ref:g}) Pa: the film "
-               f"cavitates below the ambient pressure; got {raw['cavitation']['p_cav']!r}")
+    if not cavitation.p_cav <= cavitation.p_ref:
+        msg = (f"cavitation.p_cav must be in [0, p_ref] = [0, {cavitation.p_ref:g}] Pa: the film "
+               f"cavitates at or below the ambient pressure; got {raw['cavitation']['p_cav']!r}")
         raise SceneError(msg)
     return cavitation
 
@@ -413,6 +413,9 @@ def _apply_overrides(raw: dict[str, Any], overrides: Iterable[str] | Mapping[str
         pairs = []
         for text in [overrides] if isinstance(overrides, str) else overrides:
             name, equals, value = str(text).partition("=")
+            if any(c in str(text) for c in "\n\r"):  # a second line would set a key the override does not name
+                msg = f"override {text!r} spans lines; give one section.key=value per override"
+                raise SceneError(msg)
             if not equals:
                 name = ""  # (a malformed override)
             pairs.append((name, text, _override_value(value.strip())))
@@ -542,7 +545,7 @@ def resolved_toml(scene: Scene) -> str:
     sections["run"] = {f"t_end{suffix}": run.t_end, "rtol": run.rtol}
     if run.output_interval is not None:
         sections["run"][f"output_interval{suffix}"] = run.output_interval
-    sections["run"].update(max_rows=run.max_rows, gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds,
+    sections["run"].update(max_rows=run.max_rows, max_steps=run.max_steps, gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds,
                            on_invalid=run.on_invalid)
     units = ("dimensionless: times in tau, rates in 1/tau, lengths in b" if scene.dimensionless
              else "SI units, angles in rad")

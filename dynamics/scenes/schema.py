@@ -17,7 +17,7 @@ import math
 import sys
 from dataclasses import dataclass, field
 
-from dynamics.apparatus import PRESETS, Apparatus
+from dynamics.apparatus import DENSITY, PRESETS, Apparatus
 from dynamics.equations.forces import ENDS
 from dynamics.equations.full import FRAME_TERMS
 from dynamics.equations.limits import Limits
@@ -172,7 +172,10 @@ class Run:
                                         low=0.0, bounds="()", example="0.1 s", reduced_unit="tau", none="none")
     max_rows: int = key(200_000, help="most rows trajectory.csv may hold: a longer every-step output is thinned "
                                       "to every k-th step (event rows kept); an output_interval giving more rows "
-                                      "is refused before the run", low=1, integer=True)
+                                      "is refused before the run", low=1, high=2_000_000, integer=True)
+    max_steps: int = key(2_000_000, help="accepted integrator steps after which a run stops unfinished "
+                                         "(every step is held in memory, about 300 bytes each)", low=1,
+                         high=10_000_000, integer=True)
     gap_floor: float = _limit("gap_floor")
     max_gap_reynolds: float | None = _limit("max_gap_reynolds")
     on_invalid: str = _limit("on_invalid")
@@ -246,8 +249,7 @@ ALTERNATIVE_KEYS: dict[tuple[str, str], Key] = {
     ("apparatus", "preset"): Key(help="a device of the paper's Table 2; explicit keys override it",
                                  choices=tuple(PRESETS)),
     ("apparatus", "rho_a"): Key(help="density of a solid inner cylinder, instead of m_a",
-                                dimension="[mass] / [length] ** 3", unit="kg/m^3", low=0.0, bounds="()",
-                                example="7.85 g/cm^3"),
+                                **dict(DENSITY, example="7.85 g/cm^3")),
     ("contact", "sigma"): Key(help="the asperities' gap, instead of kappa_star = 1 - sigma/delta",
                               dimension="[length]", unit="m", low=0.0, bounds="()", example="50 um"),
     ("contact", "friction_angle"): Key(help="physical friction angle psi_hat, instead of psi", **_FRICTION),

@@ -16,6 +16,7 @@ the end, the counts and the wall time.
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import math
 import os
@@ -32,7 +33,7 @@ from dynamics.app.sweeps.store import CSV_NAME, MANIFEST_NAME, Table, check_mani
 from dynamics.scenes import parse_scene
 from lubrication.files import write_json
 
-__all__ = ["BATCHES_PER_WORKER", "MAX_BATCH", "SweepResult", "run_sweep"]
+__all__ = ["BATCHES_PER_WORKER", "MAX_BATCH", "SweepResult", "max_workers", "run_sweep"]
 
 logger = logging.getLogger(__name__)
 
@@ -85,12 +86,39 @@ def _warm_batch(sweep: Sweep, point: dict) -> None:
                            type(err).__name__, err)
 
 
+def max_workers() -> int:
+    """Most worker processes of a local cluster: one per core (more only share the cores)."""
+    return max(os.cpu_count() or 1, 1)
+
+
+def _output_folder(outdir) -> Path:
+    """``outdir`` as a folder that exists or can be made, else SweepError (before any work)."""
+    outdir = Path(outdir)
+    if str(outdir) == "":
+        raise SweepError("the output folder must be a path, got an empty string")
+    if outdir.exists() and not outdir.is_dir():
+        msg = f"the output folder {outdir} is a file, not a folder; choose another with -o DIR"
+        raise SweepError(msg)
+    parent = next((p for p in (outdir, *outdir.parents) if p.exists()), Path("."))
+    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
+        msg = f"cannot write the output folder {outdir}: {parent} is not a writable folder"
+        raise SweepError(msg)
+    return outdir
+
+
 def _client(scheduler: str | None, workers: int):
-    """A dask client of the scheduler at ``scheduler``, or of a new local cluster, and that cluster."""
+    """A dask client of the scheduler at ``scheduler``, or of a new local cluster, and that cluster.
+
+    A scheduler that cannot be reached within 10 s (a malformed address, none listening) is a SweepError.
+    """
     from dask.distributed import Client, LocalCluster
 
     if scheduler is not None:
-        return Client(scheduler), None
+        try:
+            return Client(scheduler, timeout=10), None
+        except (OSError, ValueError, TypeError) as err:
+            msg = f"--scheduler {scheduler!r}: cannot reach a dask scheduler there ({type(err).__name__}: {err})"
+            raise SweepError(msg) from err
     # dashboard on any free port: 8787 may belong to another cluster on this machine
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=":0", silence_logs=logging.WARNING)
@@ -145,11 +173,10 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
         raise ImportError(msg) from err
 
     start = time.perf_counter()
-    if workers < 1:
-        msg = f"workers must be an integer >= 1, got {workers!r}"
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= max_workers():
+        msg = f"workers must be an integer in [1, {max_workers()}] (this machine's cores), got {workers!r}"
         raise SweepError(msg)
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
+    outdir = _output_folder(outdir)
     csv_path, manifest_path = outdir / CSV_NAME, outdir / MANIFEST_NAME
     manifest = check_manifest(manifest_path, sweep)
     points = sweep.points()
@@ -158,37 +185,36 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
     todo = missing if max_points is None else missing[:max_points]
     logger.info("%s: %d points, %d already in %s, %d to run", sweep.source, len(points),
                 len(points) - len(missing), csv_path, len(todo))
-    manifest.update(source=sweep.source, fingerprint=sweep.fingerprint(), points=len(points),
-                    axes={a.key: ("random" if a.random else "grid", len(a.values)) for a in sweep.axes},
-                    seed=sweep.seed)
-    write_json(manifest_path, manifest)
-    computed, compute_time = 0, 0.0
-    with Table(csv_path, sweep.keys) as table:
+    computed, compute_time, n_workers = 0, 0.0, 0
+    with contextlib.ExitStack() as stack:
+        if todo:  # the cluster before any file: a scheduler that cannot be reached leaves the folder untouched
+            client, cluster = _client(scheduler, workers)
+            stack.callback(client.close)
+            if cluster is not None:
+                stack.callback(cluster.close)
+        outdir.mkdir(parents=True, exist_ok=True)
+        manifest.update(source=sweep.source, fingerprint=sweep.fingerprint(), points=len(points),
+                        axes={a.key: ("random" if a.random else "grid", len(a.values)) for a in sweep.axes},
+                        seed=sweep.seed)
+        write_json(manifest_path, manifest)
+        table = stack.enter_context(Table(csv_path, sweep.keys))
         if todo:
             _warm_batch(sweep, todo[0])
-            client, cluster = _client(scheduler, workers)
             n_workers = len(client.scheduler_info()["workers"]) or workers
             bar = _progress_bar(len(points), len(points) - len(missing))
-            try:
-                compute_start = time.perf_counter()
-                futures = [client.submit(run_batch, sweep.base, sweep.source, batch, pure=False)
-                           for batch in _batches(todo, n_workers, batch_size)]
-                for future in as_completed(futures):
-                    rows = future.result()
-                    future.release()
-                    table.append(rows)
-                    computed += len(rows)
-                    if bar is not None:
-                        bar.update(len(rows))
-                compute_time = time.perf_counter() - compute_start
-            finally:
+            if bar is not None:
+                stack.callback(bar.close)
+            compute_start = time.perf_counter()
+            futures = [client.submit(run_batch, sweep.base, sweep.source, batch, pure=False)
+                       for batch in _batches(todo, n_workers, batch_size)]
+            for future in as_completed(futures):
+                rows = future.result()
+                future.release()
+                table.append(rows)
+                computed += len(rows)
                 if bar is not None:
-                    bar.close()
-                client.close()
-                if cluster is not None:
-                    cluster.close()
-        else:
-            n_workers = 0
+                    bar.update(len(rows))
+            compute_time = time.perf_counter() - compute_start
     rows = read_rows(csv_path)
     regimes = dict(Counter(row["regime"] for row in rows))
     result = SweepResult(csv_path=csv_path, points=len(points), already_done=len(points) - len(missing),

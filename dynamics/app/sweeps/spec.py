@@ -46,8 +46,11 @@ import numpy as np
 
 from dynamics.scenes import SceneError, parse_scene
 
-__all__ = ["Axis", "Sweep", "SweepError", "load_sweep", "overrides", "parse_sweep", "point_key"]
+__all__ = ["MAX_POINTS", "Axis", "Sweep", "SweepError", "load_sweep", "overrides", "parse_sweep", "point_key"]
 
+#: Most points a sweep may have: its table and its list of points are held in memory (about a
+#: kilobyte a point), and ten million points of the regime map take hours on a few cores.
+MAX_POINTS = 10_000_000
 _TOP_KEYS = ("base", "seed", "axes")
 _GRID_KEYS = ("start", "stop", "num", "spacing")
 _RANDOM_KEYS = ("random", "low", "high", "num")
@@ -184,8 +187,8 @@ def _number(key: str, name: str, value: Any) -> float:
 
 
 def _count(key: str, value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        msg = f"axes.{key}.num must be an integer >= 1, got {value!r}"
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_POINTS:
+        msg = f"axes.{key}.num must be an integer in [1, {MAX_POINTS:,}], got {value!r}"
         raise SweepError(msg)
     return value
 
@@ -290,6 +293,12 @@ def parse_sweep(sweep: str | Mapping[str, Any], source: str = "<string>",
     if len(set(sizes.values())) > 1:
         msg = ("random axes are drawn together and need the same num, got "
                + ", ".join(f"axes.{k}.num = {n}" for k, n in sizes.items()))
+        raise SweepError(msg)
+    points = math.prod(len(a.values) for a in axes if not a.random) * max(sizes.values(), default=1)
+    if points > MAX_POINTS:
+        msg = (f"the axes make {points:,} points, more than {MAX_POINTS:,}: "
+               + " x ".join(f"{len(a.values)} ({a.key})" for a in axes if not a.random)
+               + (f" x {max(sizes.values())} random samples" if sizes else ""))
         raise SweepError(msg)
     for axis in axes:
         _check_values(base, axis, base_source)

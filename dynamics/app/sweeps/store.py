@@ -13,6 +13,7 @@ only by the same sweep.
 from __future__ import annotations
 
 import csv
+import io
 import json
 import os
 from collections.abc import Iterable, Mapping, Sequence
@@ -20,6 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from dynamics.app.sweeps.spec import Sweep, SweepError
+from lubrication.files import write_text
 
 __all__ = ["CSV_NAME", "MANIFEST_NAME", "NUMBERS", "Table", "check_manifest", "read_rows"]
 
@@ -94,8 +96,11 @@ class Table:
                     fh.truncate(data.rfind(b"\n") + 1)
             self._file = path.open("a", encoding="utf-8", newline="")
         else:
-            self._file = path.open("w", encoding="utf-8", newline="")
-            csv.writer(self._file, lineterminator="\n").writerow(self.columns)
+            # the header is written whole before any row: a sweep killed at once leaves a table, never an empty file
+            header = io.StringIO()
+            csv.writer(header, lineterminator="\n").writerow(self.columns)
+            write_text(path, header.getvalue())
+            self._file = path.open("a", encoding="utf-8", newline="")
         self._writer = csv.DictWriter(self._file, self.columns, lineterminator="\n")
 
     def append(self, rows: Iterable[Mapping[str, Any]]) -> None:
