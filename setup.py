@@ -4,7 +4,7 @@ numba compiles a kernel the first time it runs, about a minute and a half for
 what a default ``snail run`` needs, and caches it beside the source. The
 build runs :mod:`dynamics.app.precompile` on the staged package, so that the
 cache ships with it and the first run after installing only loads it. The
-cache is keyed on the sources of the packages (``lubrication._jit``), the
+cache is keyed on the sources of the packages (``numerics.jit``), the
 Python and numba versions and the CPU; where one differs at run time, numba
 compiles again as before.
 ``SNAIL_BUILD_KERNELS=0`` leaves the step out.

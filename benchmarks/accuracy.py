@@ -3,12 +3,12 @@ r"""Speed against accuracy of every way of getting the fluid forces, and of gett
 Part A: forces at one instant. For delta/a in {0.003, 0.01, 0.03, 0.1,
 0.40625 (the paper's apparatus, a = 0.8 cm, b = 1.125 cm), 1} and kappa in
 {0.1, 0.5, 0.9, 0.98, 0.99}, the five resistance coefficients of
-:class:`lubrication.forces.Resistance` are computed by
+:class:`lubrication.geometry.Resistance` are computed by
 
 * the closed forms (2.5)-(2.7);
 * the Reynolds solver on each grid (sommerfeld, uniform), profile (thin
   gap (B1), exact eccentric gap) and N in {8, ..., 1024}, one Gauss point per
-  cell (what :func:`dynamics.equations.forces.reynolds` uses);
+  cell (what a trajectory's "reynolds" model uses);
 * the finite-element Stokes solve on the default mesh
   (:func:`lubrication.stokes.default_mesh`) scaled by 0.25 ... 2 in both
   directions;
@@ -28,7 +28,7 @@ Cost. The median wall time of one force evaluation (one motion), from
 Python through the public face :func:`lubrication.fluid_forces` (for the
 finite elements the whole solve with its factorisation, cache cleared) and,
 for the models the equations of motion can call, from a numba loop over
-:func:`dynamics.equations.forces.evaluate`: what one right-hand side pays.
+the model's compiled kernel (:mod:`lubrication.kernels`): what one right-hand side pays.
 Samples of at least 2 ms, interleaved over all models in shuffled rounds, JIT
 compilation excluded by a warm-up.
 
@@ -77,14 +77,14 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 from benchmarks.publish import RESULTS, publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
 from dynamics.apparatus import Apparatus, preset
-from dynamics.equations import forces as forcemodels
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
-from lubrication.files import save_figure, write_text
-from lubrication.forces import Resistance, fluid_forces, resistance
-from lubrication.geometry import Annulus, Fluid, Motion
+from lubrication.geometry import Annulus, Fluid, Motion, Resistance
+from lubrication.kernels import KernelModel
+from lubrication.registry import fluid_forces, kernel_model, resistance
 from lubrication.stokes import clear_cache, default_mesh
+from numerics.files import save_figure, write_text
 
 DELTAS = (0.003, 0.01, 0.03, 0.1, 0.40625, 1.0)
 KAPPAS = (0.1, 0.5, 0.9, 0.98, 0.99)
@@ -150,18 +150,18 @@ def _row_errors(got: Resistance, truth: Resistance) -> dict:
 
 
 @njit(cache=False, nogil=True)
-def _evaluate_loop(calls, model, a, b, mu, length, kappa, omk):
-    """``calls`` evaluations of the jitted force model, with inputs that change from call to call."""
+def _evaluate_loop(calls, kernel, data, a, b, mu, length, kappa, omk):
+    """``calls`` evaluations of a model's compiled kernel, with inputs that change from call to call."""
     total = 0.0
     for i in range(calls):
         s = 1.0 + 1e-9 * i
-        f_eps, f_chi, t_a = forcemodels.evaluate(model, a, b, mu, length, kappa, omk, 1e-6 * s, 0.9 * s, 0.4 * s)
+        f_eps, f_chi, t_a = kernel(data, a, b, mu, length, kappa, omk, 1e-6 * s, 0.9 * s, 0.4 * s)
         total += f_eps + f_chi + t_a
     return total
 
 
-def _jit_batch(model: forcemodels.ForceModel, annulus: Annulus):
-    args = (model.data, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa, annulus.one_minus_kappa)
+def _jit_batch(model: KernelModel, annulus: Annulus):
+    args = (model.kernel, model.data, annulus.a, annulus.b, FLUID.mu, annulus.length, annulus.kappa, annulus.one_minus_kappa)
 
     def batch(calls):
         start = time.perf_counter()
@@ -191,13 +191,9 @@ def _fem_seconds(annulus: Annulus, mesh: dict, rounds: int) -> float:
     return float(np.median(times))
 
 
-def _eom_model(c: dict) -> forcemodels.ForceModel | None:
-    if c["model"] == "closed-form":
-        return forcemodels.closed_form()
-    if c["model"] == "reynolds":
-        return forcemodels.reynolds(**c["options"])
-    if c["model"] == "stokes-exact":
-        return forcemodels.stokes_exact()
+def _eom_model(c: dict) -> KernelModel | None:
+    if c["model"] in ("closed-form", "reynolds", "stokes-exact"):
+        return kernel_model(c["model"], **c["options"])
     return None
 
 
@@ -258,8 +254,7 @@ def _run(app: Apparatus, equations: str, forces: str, method: str, rtol: float):
     if equations == "reduced":
         return simulate(app, RELEASE, T_END_TAU * app.tau, equations="reduced", rtol=rtol, method=method,
                         limits=LIMITS)
-    model = {"closed-form": forcemodels.closed_form, "reynolds": forcemodels.reynolds,
-             "stokes": forcemodels.stokes_exact}[forces]()
+    model = kernel_model({"stokes": "stokes-exact"}.get(forces, forces))
     return simulate(app, RELEASE, T_END_TAU * app.tau, forces=model, rtol=rtol, method=method, limits=LIMITS)
 
 
@@ -398,7 +393,7 @@ def model_choice(results: dict) -> dict:
                                  "exact 2-D Stokes solution (lubrication.stokes_exact); T_a per W_b "
                                  "against |T_a per W_a|",
                   "jit_s": "median wall seconds of one force evaluation from a numba loop over "
-                           "dynamics.equations.forces.evaluate (null: not callable from the equations of motion)",
+                           "the model's compiled kernel (null: not callable from the equations of motion)",
                   "python_s": "median wall seconds of one force evaluation through the Python face",
                   "trajectory_error": f"larger relative error of X_b and 1 - kappa after {T_END_TAU:g} tau from "
                                       f"kappa = {RELEASE.kappa:g}, phi = {RELEASE.phi:g} at rest, against the "

@@ -9,8 +9,8 @@ builds it by default.
 
 Each solve is timed two ways, JIT compilation excluded:
 
-* "jit": a numba loop calling :func:`lubrication._cavitation_kernels.cavitating_film_forces`
-  (the full film: :func:`lubrication._kernels.film_forces`) with the arguments that
+* "jit": a numba loop calling :func:`lubrication.cavitation_kernels.cavitating_film_forces`
+  (the full film: :func:`lubrication.reynolds_kernels.film_forces`) with the arguments that
   :func:`dynamics.equations.forces.evaluate` passes, i.e. what a trajectory pays per
   right-hand side;
 * "python": :func:`lubrication.cavitation.cavitating_forces` (the full film:
@@ -41,14 +41,14 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 from benchmarks.publish import publish  # noqa: E402
 from benchmarks.reynolds import _machine, _time_all, _Timer  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, reynolds_forces  # noqa: E402
-from lubrication._cavitation_kernels import cavitating_film_forces  # noqa: E402
-from lubrication._kernels import THIN, film_forces  # noqa: E402
 from lubrication.cavitation import (  # noqa: E402
     CAVITATION_MODELS,
     cavitating_forces,
     cavitating_pressure,
 )
-from lubrication.reynolds import _psi_rule  # noqa: E402
+from lubrication.cavitation_kernels import cavitating_film_forces  # noqa: E402
+from lubrication.reynolds import psi_rule  # noqa: E402
+from lubrication.reynolds_kernels import THIN, film_forces  # noqa: E402
 
 A, B, LENGTH = 0.008, 0.01125, 0.1035  # the paper's apparatus (Table 2), m
 FLUID = Fluid(nu=2.0e-4, rho=960.0)  # 200 cSt silicone oil
@@ -94,7 +94,7 @@ def _full_film_loop(repeats, kappa, omk, eps_dot, w_a, w_b, rule, m):
 
 
 def _jit_batch(model: str, annulus: Annulus, n: int):
-    rule, _ = _psi_rule(n, POINTS_PER_CELL)
+    rule, _ = psi_rule(n, POINTS_PER_CELL)
     args = (annulus.kappa, annulus.one_minus_kappa, MOTION.eps_dot, MOTION.w_a, MOTION.w_b, rule, POINTS_PER_CELL)
 
     def batch(calls):

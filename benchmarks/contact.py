@@ -27,11 +27,11 @@ from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from dynamics.apparatus import Apparatus
 from dynamics.contact.reduced import ContactParams
-from dynamics.equations.forces import closed_form
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
+from lubrication.registry import kernel_model
 
 PARAMS = ReducedParams(0.25, 1.0, 1.0)
 START, T_END = Initial(kappa=0.5, phi=0.3), 300.0
@@ -66,10 +66,10 @@ def run() -> dict:
             lambda psi=psi: simulate(PARAMS, START, T_END, contact=ContactParams(0.98, psi), limits=SMOOTH_LIMITS))
     device = Apparatus.from_groups(s=PARAMS.s, upsilon=PARAMS.upsilon, mu_ratio=1.5, delta_over_a=0.01)
     t_end = T_END * device.tau
-    full = {"no contact": lambda: simulate(device, START, t_end, forces=closed_form(), limits=SMOOTH_LIMITS)}
+    full = {"no contact": lambda: simulate(device, START, t_end, forces=kernel_model("closed-form"), limits=SMOOTH_LIMITS)}
     for psi in PSIS:
         full[f"contact, psi = {psi:g}"] = (lambda psi=psi: simulate(
-            device, START, t_end, forces=closed_form(), contact=ContactParams(0.98, psi), limits=SMOOTH_LIMITS))
+            device, START, t_end, forces=kernel_model("closed-form"), contact=ContactParams(0.98, psi), limits=SMOOTH_LIMITS))
     return {"machine": _machine(), "t_end_tau": T_END, "repeats": REPEATS,
             "rows": _rows(reduced), "full_rows": _rows(full)}
 

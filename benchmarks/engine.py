@@ -53,9 +53,9 @@ if __package__ in (None, ""):
 
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
-from dynamics.engine import SAMPLE, check_inputs, engine_for, integrate, no_events
-from dynamics.engine.compiled import first_class, function_types
-from lubrication._jit import jit
+from numerics.engine import SAMPLE, check_inputs, engine_for, integrate, no_events
+from numerics.engine.compiled import first_class, function_types
+from numerics.jit import jit
 
 RTOLS = (1e-6, 1e-10)
 REPEATS = 5
@@ -262,7 +262,7 @@ _COMPILE_SCRIPT = """
 import time
 start = time.perf_counter()
 import numpy as np
-from dynamics.engine import engine_for
+from numerics.engine import engine_for
 imported = time.perf_counter()
 engine_for(np.zeros(1))
 print(imported - start, time.perf_counter() - imported)

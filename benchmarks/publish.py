@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from lubrication.files import write_text
+from numerics.files import write_text
 
 RESULTS = Path(__file__).resolve().parent / "results"
 

@@ -11,7 +11,7 @@ its row (``error_row`` uses that instead of its own size).
 
 Methods, each timed per solve (one motion), with JIT compilation excluded:
 
-* the kernel :func:`lubrication._kernels.film_forces`, from a numba loop
+* the kernel :func:`lubrication.reynolds_kernels.film_forces`, from a numba loop
   ("jit") and through :func:`lubrication.reynolds_forces` ("python"), on the
   Sommerfeld and the uniform grid with m = 1, 2 Gauss points per cell;
 * the same finite-volume problem assembled as a periodic sparse matrix with
@@ -79,10 +79,10 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, resistance, reynolds_forces  # noqa: E402
-from lubrication._kernels import THIN, film_forces  # noqa: E402
 from lubrication.closed_form import lubrication_forces  # noqa: E402
-from lubrication.forces import Resistance  # noqa: E402
-from lubrication.reynolds import GRIDS, _psi_rule  # noqa: E402
+from lubrication.geometry import Resistance  # noqa: E402
+from lubrication.reynolds import GRIDS, psi_rule  # noqa: E402
+from lubrication.reynolds_kernels import THIN, film_forces  # noqa: E402
 
 __all__ = ["run", "conventional_forces", "sparse_fv_forces", "to_markdown"]
 
@@ -179,7 +179,7 @@ def _pinned_laplacian(c: np.ndarray) -> sparse.csr_array:
 def _psi_tables(n: int, m: int):
     """sin psi, 1 - cos psi, 1 + cos psi and the Gauss weights at the N*m points.
 
-    Independent of :func:`lubrication.reynolds._psi_rule`; the versines use half
+    Independent of :func:`lubrication.reynolds.psi_rule`; the versines use half
     angles so that they keep their relative precision.
     """
     x, g = np.polynomial.legendre.leggauss(m)
@@ -339,7 +339,7 @@ def _time_all(timers, rounds, batch_seconds, rng):
 
 def _jit_batch(kappa, omk, kappa_g, omk_g, n, m):
     """Kernel calls from the numba loop, on the grid that :mod:`lubrication.reynolds` would build."""
-    rule, _ = _psi_rule(n, m)
+    rule, _ = psi_rule(n, m)
 
     def batch(calls):
         repeats = max(1, calls // 3)

@@ -8,14 +8,14 @@ theta grid is the graded one of :func:`lubrication.reynolds2d.default_clustering
 
 Methods, each timed per solve, JIT compilation excluded:
 
-* "modal jit": :func:`lubrication._kernels2d.modal_forces` from a numba loop,
+* "modal jit": :func:`lubrication.reynolds2d_kernels.modal_forces` from a numba loop,
   with the z-modes of the grid precomputed (they depend on the z-grid only and
   are cached): what an integrator step would pay;
 * "python": :func:`lubrication.reynolds2d.reynolds2d_forces`, checks,
   grid building (cached z-modes) and dataclasses included;
 * "sparse LU": the same discrete system assembled by
-  :func:`lubrication._kernels2d.assemble_general` and solved by SuperLU
-  (scipy ``splu``), forces by :func:`lubrication._kernels2d.lines_film` from
+  :func:`lubrication.reynolds2d_kernels.assemble_general` and solved by SuperLU
+  (scipy ``splu``), forces by :func:`lubrication.reynolds2d_kernels.lines_film` from
   the nodal field, its axial outflow from the same sparse algebra as the
   general solver: the baseline that does not use the separation in z, timed
   in three stages (assembly, factorisation and solve, forces). It must agree
@@ -56,7 +56,14 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine, _time_all, _Timer
-from lubrication import Annulus, Fluid, Motion, _kernels, _kernels2d, closed_form_forces
+from lubrication import (
+    Annulus,
+    Fluid,
+    Motion,
+    closed_form_forces,
+    reynolds2d_kernels,
+    reynolds_kernels,
+)
 from lubrication.finite_length import small_eccentricity_factor
 from lubrication.reynolds2d import (
     _general_outflow,
@@ -86,7 +93,7 @@ def _modal_loop(repeats, kappa, omk, eps_dot, w_a, kappa_g, omk_g, rule, cell_ru
     tpos, lower0, lower1 = cell_rule
     total = 0.0
     for _ in range(repeats):
-        f_eps, f_chi, t_a = _kernels2d.modal_forces(_kernels.THIN, A, B, FLUID_MU, kappa, omk, eps_dot, w_a, 0.0,
+        f_eps, f_chi, t_a = reynolds2d_kernels.modal_forces(reynolds_kernels.THIN, A, B, FLUID_MU, kappa, omk, eps_dot, w_a, 0.0,
                                                     kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, wpsi, stretch, tpos,
                                                     lower0, lower1, m, lam, coef, half, end)
         total += f_eps + f_chi + t_a
@@ -103,7 +110,7 @@ def _modal_args(annulus, motion, n, n_axial):
 def _modal_forces(annulus, motion, n, n_axial):
     args = _modal_args(annulus, motion, n, n_axial)
     rule, cell_rule = args[6], args[7]
-    return _kernels2d.modal_forces(_kernels.THIN, A, B, FLUID_MU, *args[:2], args[2], args[3], 0.0, args[4],
+    return reynolds2d_kernels.modal_forces(reynolds_kernels.THIN, A, B, FLUID_MU, *args[:2], args[2], args[3], 0.0, args[4],
                                    args[5], *rule, *cell_rule, *args[8:])
 
 
@@ -127,7 +134,7 @@ def _sparse_forces(annulus, motion, n, n_axial, stage_times=None):
     solved = time.perf_counter()
     outflow = _general_outflow(setup, integrals, masses, half_u, phi, axial, end_lines)
     lines = np.empty((z_lines, 3))
-    sums = _kernels2d.lines_film(integrals, masses, 2.0 * half_u, 0.0, phi.reshape(z_lines, n), outflow,
+    sums = reynolds2d_kernels.lines_film(integrals, masses, 2.0 * half_u, 0.0, phi.reshape(z_lines, n), outflow,
                                  setup.weights, False, 0.0, lines)
     if stage_times is not None:
         stage_times[:] = [assembled - start, solved - assembled, time.perf_counter() - solved]

@@ -1,6 +1,6 @@
 r"""Cost of the exact Stokes forces against a table lookup, and the accuracy of both and of the finite elements.
 
-Cost. The exact force kernel :func:`lubrication.stokes_exact.stokes_exact_forces`
+Cost. The exact coefficients :func:`lubrication.stokes_exact.stokes_exact_resistance`
 is timed from a jitted loop over a spread of states (kappa in [0, 0.999],
 1 - kappa given apart, random eps', W_a, W_b; delta/a = 0.40625), the total
 divided by the number of calls; median of several rounds. In the same run and
@@ -13,7 +13,7 @@ variable that a model could use instead: the five exact ratios to (2.5)-(2.7)
 [sqrt(1 - kappa_max^2), 1], kappa_max = 0.999, interpolated by the barycentric
 formula (:func:`table_ratios`; below the last node the ratios are held) and
 multiplied by the closed-form coefficients (:func:`table_forces`). From Python:
-the faces :func:`lubrication.stokes_exact.exact_forces` and
+the faces :func:`lubrication.stokes_exact.stokes_exact_forces` and
 :func:`lubrication.closed_form.closed_form_forces`, and the bare jitted exact
 kernel called with floats. One warm-up call precedes every timing.
 
@@ -46,19 +46,18 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
-from lubrication._jit import jit
 from lubrication.closed_form import (
     closed_form_forces,
+    closed_form_resistance,
     lubrication_forces,
-    lubrication_resistance,
 )
 from lubrication.geometry import RESISTANCE_NAMES, Annulus, Fluid, Motion
 from lubrication.stokes_exact import (
-    exact_forces,
     stokes_exact_forces,
     stokes_exact_ratios,
     stokes_exact_resistance,
 )
+from numerics.jit import jit
 
 APPARATUS_GAP = 0.40625  # Table 2: a = 0.8 cm, b = 1.125 cm
 DELTAS = (0.01, APPARATUS_GAP)
@@ -121,7 +120,7 @@ def table_ratios(zeta_nodes, node_ratios, zeta):
 def table_forces(zeta_nodes, node_ratios, a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
     """f_eps, f_chi (N) and T_a (N m): the tabulated ratios times the coefficients of (2.5)-(2.7)."""
     q = table_ratios(zeta_nodes, node_ratios, math.sqrt(omk * (1.0 + kappa)))
-    r = lubrication_resistance(a, delta, mu, kappa, omk)
+    r = closed_form_resistance(a, delta, mu, kappa, omk)
     return (length * q[0] * r[0] * eps_dot, length * (q[1] * r[1] * w_a + q[3] * r[3] * w_b),
             length * (q[2] * r[2] * w_a + q[4] * r[4] * w_b))
 
@@ -132,9 +131,9 @@ def _loop_exact(kappas, omks, motions, calls):
     m = kappas.size
     for i in range(calls):
         j = i % m
-        f = stokes_exact_forces(0.008, 0.00325, 0.2, 0.1, kappas[j], omks[j],
-                                motions[j, 0], motions[j, 1], motions[j, 2])
-        total += f[0] + f[1] + f[2]
+        r = stokes_exact_resistance(0.008, 0.00325, 0.2, kappas[j], omks[j])
+        total += 0.1 * (r[0] * motions[j, 0] + r[1] * motions[j, 1] + r[3] * motions[j, 2]
+                        + r[2] * motions[j, 1] + r[4] * motions[j, 2])
     return total
 
 
@@ -193,10 +192,9 @@ def _timing(table, calls, rounds) -> dict:
     motion = Motion(eps_dot=1e-4, chi_dot=0.3, omega_a=1.1, omega_b=-0.4)
     fluid = Fluid(nu=2e-4, rho=960.0)
     python = {
-        "exact": lambda: exact_forces(annulus, motion, fluid),
+        "exact": lambda: stokes_exact_forces(annulus, motion, fluid),
         "closed-form": lambda: closed_form_forces(annulus, motion, fluid),
-        "exact kernel, floats": lambda: stokes_exact_forces(0.008, 0.00325, 0.2, 0.1, 0.7, 0.3,
-                                                            1e-4, 0.8, -0.7),
+        "exact coefficients, floats": lambda: stokes_exact_resistance(0.008, 0.00325, 0.2, 0.7, 0.3),
     }
     out = {"jit": {}, "python": {}}
     for name, fn in jitted.items():

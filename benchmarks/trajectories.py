@@ -20,7 +20,7 @@ reduced model) and one output row per step:
     scipy's LSODA and Radau on the compiled right-hand side and Jacobian of
     :mod:`dynamics.equations` (called from Python once per evaluation);
 ``engine``
-    the compiled Radau IIA integrator, :func:`dynamics.engine.integrate`, on the
+    the compiled Radau IIA integrator, :func:`numerics.engine.integrate`, on the
     same compiled functions: no Python per step.
 
 The plain-Python right-hand sides must equal the compiled ones to 1e-12
@@ -56,12 +56,12 @@ if __package__ in (None, ""):  # run as a file: make the project importable
 
 from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
-from dynamics import engine
 from dynamics.equations import full, reduced
-from dynamics.equations.forces import closed_form
 from dynamics.equations.limits import GAP_FLOOR
 from dynamics.scenes import load_scene
 from dynamics.simulation import simulate
+from lubrication.registry import kernel_model
+from numerics import engine
 
 __all__ = ["plain_reduced_rhs", "plain_rhs", "run", "to_markdown"]
 
@@ -139,8 +139,9 @@ class _Problem:
         ap, initial = scene.apparatus, scene.initial
         self.name, self.apparatus, self.phi0 = model, ap, initial.phi
         if model == "full":
-            self.args = full.run_args(ap, closed_form(), gap_floor=GAP_FLOOR)
-            self.fun, self.jac = full.rhs, full.jacobian
+            model = kernel_model("closed-form")
+            self.args = full.run_args(ap, model, gap_floor=GAP_FLOOR)
+            self.fun, self.jac = full.model_functions(model)[:2]
             self.plain = lambda t, y: plain_rhs(t, y, ap)
             self.y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                                          initial.omega_a, initial.omega_b)
@@ -276,7 +277,7 @@ def run(rtols=RTOLS, repeats: int = REPEATS, models=MODELS, seed: int = 0) -> di
     scene_runs = []
     ap, initial, settings = scene.apparatus, scene.initial, scene.run
     for _ in range(repeats):
-        wall, _, trajectory = _timed(lambda: simulate(ap, initial, settings.t_end, forces=closed_form(),
+        wall, _, trajectory = _timed(lambda: simulate(ap, initial, settings.t_end, forces=kernel_model("closed-form"),
                                                       rtol=settings.rtol, limits=settings.limits))
         scene_runs.append(wall)
     return {

@@ -23,6 +23,10 @@ Names below are imported on first use, so that ``import dynamics`` is cheap.
 
 from importlib import import_module
 
+from numerics.stamps import stamp_kernels
+
+stamp_kernels(__name__, "lubrication", "numerics")
+
 _WHERE = {
     "ALUMINIUM": "apparatus", "PRESETS": "apparatus", "STEEL": "apparatus", "Apparatus": "apparatus",
     "preset": "apparatus",
@@ -30,7 +34,7 @@ _WHERE = {
     "FORCE_MODELS": "equations.forces", "ForceModel": "equations.forces", "force_model": "equations.forces",
     "Limits": "equations.limits", "ReducedParams": "equations.reduced",
     "Initial": "initial",
-    "Trajectory": "simulation", "simulate": "simulation",
+    "Trajectory": "trajectory", "simulate": "simulation", "ValidityWarning": "equations.limits",
     "Scene": "scenes", "SceneError": "scenes", "load_scene": "scenes", "parse_scene": "scenes",
     "run_scene": "app.run",
 }

@@ -50,8 +50,8 @@ from types import MappingProxyType
 
 from dynamics.equations.reduced import ReducedParams
 from dynamics.equations.special import decay_exponent
-from dynamics.keys import check_fields, key
 from lubrication.geometry import check_finite, check_range
+from numerics.keys import check_fields, key
 
 __all__ = ["ALUMINIUM", "DENSITY", "PRESETS", "STANDARD_GRAVITY", "STEEL", "Apparatus", "preset"]
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dynamics.keys import check_fields, key
+from numerics.keys import check_fields, key
 
 __all__ = ["MAX_RATE", "Initial"]
 

@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 __all__ = ["REGIMES", "classify", "late_half"]
 

@@ -25,7 +25,7 @@ results. p_cav <= p_ref is required.
 
 The discrete problem
 --------------------
-Everything lives on the cells and cell integrals of :mod:`lubrication._kernels`
+Everything lives on the cells and cell integrals of :mod:`lubrication.reynolds_kernels`
 (vertex-centred finite volumes, N cells, nodes psi_j). With phi = p/(12 mu a) and,
 in cell j, the conductance g_j = 1/G_j, the Couette flux k_j = (U/2) A_j/G_j and
 the h^-3-weighted mean squeeze antiderivative <Q>_j = B_j/G_j, the exact
@@ -43,7 +43,7 @@ one constant). The models change it as follows; node 0 is the feed, phi_0 fixed.
 
 * ``"none"``: the full film, R_j = 0, with the reference above.
 * ``"half-sommerfeld"`` (Guembel): the full film, then p = max(p, p_cav). The
-  force integrals (by parts, oint p' sin and oint p' omega, :mod:`lubrication._kernels`)
+  force integrals (by parts, oint p' sin and oint p' omega, :mod:`lubrication.reynolds_kernels`)
   count a cell whose nodes straddle p_cav with the fraction of it above p_cav by
   linear interpolation, so that the kept pressure rises end at p_cav exactly: second
   order where the truncation point lies inside a cell, exact (the full-film rule)
@@ -69,7 +69,7 @@ one constant). The models change it as follows; node 0 is the feed, phi_0 fixed.
   supply, so a cavity that no flux crosses (U = 0) holds no liquid (F = 0 where
   s_j != 0), and the delay with which a real cavity refills is lost.
 
-Forces use the by-parts integrals of :mod:`lubrication._kernels` cell by cell: a
+Forces use the by-parts integrals of :mod:`lubrication.reynolds_kernels` cell by cell: a
 cell that is not cavitated at both ends carries the full-film pressure through
 its nodal values (flux constant c_j = ((U/2) A_j + B_j - (phi_{j+1} - phi_j))/G_j),
 a cavitated cell carries p_cav; the JFO Couette shear is weighted by the film
@@ -119,11 +119,23 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _cavitation_kernels as _ck
-from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite
-from .reynolds import GapProfile, _theta_of_psi, film_setup
+from numerics.jit import jit
 
-__all__ = ["CAVITATION_MODELS", "CavitatingPressure", "cavitating_forces", "cavitating_pressure"]
+from . import cavitation_kernels as _ck
+from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite
+from .kernels import model_block
+from .reynolds import (
+    _CAVITATION,
+    _P_CAV,
+    _P_REF,
+    _PROFILE,
+    GapProfile,
+    _theta_of_psi,
+    film_rule,
+    film_setup,
+)
+
+__all__ = ["CAVITATION_MODELS", "CavitatingPressure", "cavitating_forces", "cavitating_kernel", "cavitating_pressure"]
 
 CAVITATION_MODELS = ("none", "half-sommerfeld", "swift-stieber", "jfo")
 
@@ -236,3 +248,20 @@ def cavitating_pressure(annulus: Annulus, motion: Motion, fluid: Fluid, model: s
                         profile: str | GapProfile = "thin") -> CavitatingPressure:
     """Nodal pressure, film fraction, mass balance and forces; arguments as :func:`cavitating_forces`."""
     return _solve(annulus, motion, fluid, model, p_cav, p_ref, n, grid, points_per_cell, profile)
+
+
+@jit
+def cavitating_kernel(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """The "reynolds" model's kernel with cavitation (:mod:`lubrication.kernels`): the ruptured film on the
+    block's grid (:func:`lubrication.reynolds.film_block`). Where the active set does not settle the forces
+    are NaN, which the integrator answers with a shorter step (:mod:`lubrication.cavitation_kernels`)."""
+    block = model_block(data)
+    sommerfeld, m, cpsi, spsi, vpsi, ppsi, wpsi = film_rule(block)
+    kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
+    n = spsi.size // m
+    none = np.empty(0)
+    f_eps, f_chi, t_a, _ = _ck.cavitating_film_forces(
+        int(block[_PROFILE]), a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
+        cpsi, spsi, vpsi, ppsi, wpsi, m, none, none, 1.0, 0.0,
+        int(block[_CAVITATION]), block[_P_CAV], block[_P_REF], np.empty(n), np.empty(n), np.empty(n))
+    return f_eps, f_chi, t_a

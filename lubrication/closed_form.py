@@ -18,14 +18,16 @@ from __future__ import annotations
 
 import math
 
-from ._jit import jit
-from .geometry import Annulus, Fluid, FluidForces, Motion
+from numerics.jit import jit
 
-__all__ = ["closed_form_forces", "lubrication_forces", "lubrication_resistance"]
+from .geometry import Annulus, Fluid, FluidForces, Motion
+from .spec import ForceModelSpec
+
+__all__ = ["closed_form_forces", "lubrication_forces", "closed_form_resistance"]
 
 
 @jit
-def lubrication_resistance(a, delta, mu, kappa, omk):
+def closed_form_resistance(a, delta, mu, kappa, omk):
     """The five coefficients of (2.5)-(2.7) per unit length, in RESISTANCE_NAMES order.
 
     R_eps (N s/m^2), R_chi_a, R_t_a, R_chi_b, R_t_b (N s/m, N s, N s/m, N s): f_eps = R_eps eps',
@@ -50,7 +52,7 @@ def lubrication_forces(a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
     f_eps, f_chi, T_a : float
         N, N, N m.
     """
-    r = lubrication_resistance(a, delta, mu, kappa, omk)
+    r = closed_form_resistance(a, delta, mu, kappa, omk)
     return (length * r[0] * eps_dot, length * (r[1] * w_a + r[3] * w_b), length * (r[2] * w_a + r[4] * w_b))
 
 
@@ -60,3 +62,9 @@ def closed_form_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidF
                            annulus.kappa, annulus.one_minus_kappa,
                            motion.eps_dot, motion.w_a, motion.w_b)
     return FluidForces(*f, model="closed-form")
+
+
+#: The model as the registry knows it (:mod:`lubrication.registry`).
+MODEL = ForceModelSpec(
+    "closed-form", "the lubrication forms (2.5)-(2.7) of the paper: leading order in delta/a", closed_form_forces,
+    resistance=closed_form_resistance)

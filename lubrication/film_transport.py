@@ -45,7 +45,7 @@ area, F_j = 1 - v_j/V_j. Across face j the liquid flux relative to the face is
     qbar_j = F_up(U) k_j + F_up(S_j) S_j - g_j (x_{j+1} - x_j),   S_j = <Q>_j - Q~_j,
 
 with k_j = (U/2) A_j/G_j, g_j = 1/G_j and <Q>_j = B_j/G_j the cell integrals of
-:mod:`lubrication._kernels` (x = phi - phi_cav). For a full film (F = 1) this is
+:mod:`lubrication.reynolds_kernels` (x = phi - phi_cav). For a full film (F = 1) this is
 exactly the full-film flux through the moving face, q - a h theta_f' = c_j - Q~_j with
 c_j = k_j + <Q>_j - g_j (x_{j+1} - x_j) the cell's flux constant, so the full-film
 pressures are the Reynolds solver's, exactly, at any motion. In a cavity, S_j moves
@@ -134,7 +134,7 @@ p_res - p_cav near 900 Pa after starting at 3 Pa).
 
 Forces
 ------
-The by-parts integrals of :mod:`lubrication._kernels` cell by cell, as in
+The by-parts integrals of :mod:`lubrication.reynolds_kernels` cell by cell, as in
 :mod:`lubrication.cavitation`: a cell at p_cav at both ends carries p_cav, the
 others the full-film profile through their nodal pressures; the Couette shear is
 weighted by the cell's mean film fraction. On the Sommerfeld grid every cell has
@@ -153,10 +153,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _film_kernels as _fk
+from . import film_kernels as _fk
 from .finite_length import small_eccentricity_factor
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
-from .reynolds import _check_discretisation, _psi_rule, _theta_of_psi
+from .reynolds import _check_discretisation, _theta_of_psi, psi_rule
 
 __all__ = ["Bubble", "Feed", "FilmRates", "TransportedFilm", "dual_areas", "end_conductance", "film_rates",
            "leaky_half_sommerfeld_forces"]
@@ -248,7 +248,7 @@ class TransportedFilm:
         return np.maximum(p_gas, self.p_cav)
 
     def kernel_data(self, a: float, length: float) -> tuple:
-        """The model's arguments of :func:`lubrication._film_kernels.film_rates`, after the motion's."""
+        """The model's arguments of :func:`lubrication.film_kernels.film_rates`, after the motion's."""
         rule, faces, node_p = _grid(self.n, self.points_per_cell)
         if isinstance(self.gauge, Feed):
             gauge = (_fk.FEED, float(self.p_cav), float(self.gauge.p_ref), 0.0, 0.0)
@@ -268,7 +268,7 @@ def end_conductance(length_over_a: float) -> float:
 
 def _grid(n: int, m: int):
     """The cells' Gauss rule, the faces' (sin psi, 1 + cos psi, sin psi/2, cos psi/2) and the nodes' 1 + cos psi."""
-    rule, nodes = _psi_rule(n, m)
+    rule, nodes = psi_rule(n, m)
     psi_f = nodes + np.pi / n
     faces = (np.sin(psi_f), 2.0 * np.cos(0.5 * psi_f) ** 2, np.sin(0.5 * psi_f), np.cos(0.5 * psi_f))
     return rule, faces, 2.0 * np.cos(0.5 * nodes) ** 2
@@ -355,7 +355,7 @@ def film_rates(annulus: Annulus, motion: Motion, fluid: Fluid, film: Transported
     if passes < 0:
         msg = "the film's complementarity problem could not be solved (a bubble squeezed to nothing?)"
         raise RuntimeError(msg)
-    _, nodes = _psi_rule(n, film.points_per_cell)
+    _, nodes = psi_rule(n, film.points_per_cell)
     theta = _theta_of_psi(nodes, annulus.kappa)
     theta[0] = np.pi
     y_cav = (film.p_cav - p_res) / (12.0 * fluid.mu * annulus.a)

@@ -88,9 +88,11 @@ from functools import lru_cache
 
 import numpy as np
 
-from ._jit import jit
+from numerics.files import cache_folder, write_bytes
+from numerics.jit import jit
+
+from . import kernels
 from .closed_form import lubrication_forces
-from .files import cache_folder, write_bytes
 from .geometry import RESISTANCE_NAMES, Annulus, Fluid, Motion, check_range
 from .reynolds import reynolds_forces
 from .reynolds2d import reynolds2d_forces
@@ -329,7 +331,7 @@ def factor_table() -> FactorTable:
     Building it takes about 10 s on two cores (measured 9-14 s; 22 s when the
     solver's kernels are compiled first).
 
-    The cache folder is :func:`lubrication.files.cache_folder` (``$SNAIL_CACHE``, else
+    The cache folder is :func:`numerics.files.cache_folder` (``$SNAIL_CACHE``, else
     ``~/.cache/snail-cylinder``); a file with other settings is rebuilt.
     """
     path = _table_path()
@@ -425,3 +427,18 @@ def table_factors(kappa: float, length_over_a: float) -> dict[str, float]:
     length_over_a = check_range("length_over_a", length_over_a, 0.0, math.inf, high_open=False)
     return dict(zip(FACTOR_NAMES, finite_length_factor_kernel(kappa, 1.0 - kappa, length_over_a,
                                                               *factor_table().args)))
+
+
+@jit(inline="always")
+def end_factors(data, kappa, omk):
+    """The finite-length factors of the five coefficients of a kernel's packed ``data``
+    (:mod:`lubrication.kernels`); ones for an infinitely long annulus."""
+    start = int(data[kernels.ENDS])
+    if start == 0:
+        return (1.0, 1.0, 1.0, 1.0, 1.0)
+    rows, cols = int(data[kernels.ROWS]), int(data[kernels.COLS])
+    size = rows * cols
+    coef_eps = data[start:start + size].reshape((rows, cols))
+    coef_chi = data[start + size:start + 2 * size].reshape((rows, cols))
+    return finite_length_factor_kernel(kappa, omk, data[kernels.LENGTH_OVER_A], coef_eps, coef_chi,
+                                       data[kernels.ZETA_MIN], data[kernels.X0])

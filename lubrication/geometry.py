@@ -20,7 +20,7 @@ __all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "
 
 #: The five resistance coefficients of a full film, in the order every table and array of
 #: the project uses: f_eps per eps', then f_chi and T_a per W_a = Omega_a - chi', then
-#: f_chi and T_a per W_b = Omega_b - chi' (see :class:`lubrication.forces.Resistance`).
+#: f_chi and T_a per W_b = Omega_b - chi' (see :class:`lubrication.geometry.Resistance`).
 RESISTANCE_NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
 
 # Forces grow as (1 - kappa)^(-3/2); below this gap they would overflow a double.

@@ -96,13 +96,15 @@ import math
 
 import numpy as np
 
-from ._jit import jit
+from numerics.jit import jit
+
+from . import kernels
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
 
 __all__ = ["CORRECTED_MEASURED_TO", "CORRECTED_SECOND_ORDER", "INTERPOLATION_ABSOLUTE", "INTERPOLATION_RELATIVE",
-           "KAPPA_AXIS", "TABLE_COLUMNS", "build_error_table", "corrected_error_estimate", "first_order_f_eps",
+           "KAPPA_AXIS", "TABLE_COLUMNS", "corrected_error_estimate", "first_order_f_eps",
            "frame_forces", "inertial_error_estimate", "inertial_force_correction", "reduced_reynolds",
-           "relative_reynolds", "small_eccentricity_forces", "table_row", "thin_gap_small_kappa"]
+           "relative_reynolds", "small_eccentricity_forces", "thin_gap_small_kappa"]
 
 
 def frame_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
@@ -290,31 +292,6 @@ TABLE_COLUMNS = ("R_chi_a (2 + kappa^2) zeta d^2 / kappa", "R_chi_b (2 + kappa^2
 KAPPA_AXIS = 1e-4
 
 
-def table_row(coefficients) -> np.ndarray:
-    """The :data:`TABLE_COLUMNS` of one :class:`lubrication.navier_stokes.InertialCoefficients`."""
-    k, d = coefficients.kappa, coefficients.delta_over_a
-    b = 1.0 + d
-    zeta = math.sqrt(1.0 - k * k)
-    r, c = coefficients.stokes, coefficients.c_eps
-    chi_scale = (2.0 + k * k) * zeta * d * d / k
-    return np.array([r[1, 1] * chi_scale, r[1, 2] * chi_scale / b,
-                     c[1, 1] / k, c[1, 2] / (k * b), c[2, 2] / (k * b * b)])
-
-
-def build_error_table(kappa_nodes, delta_nodes, **mesh) -> np.ndarray:
-    """Solve :func:`~lubrication.navier_stokes.first_inertial_correction` on a grid; shape (nk, nd, 5).
-
-    A node at kappa = 0 is solved at :data:`KAPPA_AXIS`. ``mesh`` goes to the solver.
-    """
-    from .navier_stokes import first_inertial_correction
-
-    table = np.zeros((len(kappa_nodes), len(delta_nodes), len(TABLE_COLUMNS)))
-    for i, k in enumerate(kappa_nodes):
-        for j, d in enumerate(delta_nodes):
-            table[i, j] = table_row(first_inertial_correction(d, max(k, KAPPA_AXIS), **mesh))
-    return table
-
-
 def inertial_error_estimate(kappa, delta_over_a: float, re_a, re_b):
     """Estimated relative error of the quasi-steady Stokes force of the wall rotations.
 
@@ -344,7 +321,7 @@ def inertial_error_estimate(kappa, delta_over_a: float, re_a, re_b):
         grows like the reduced Reynolds number Re* = max(|Re_a|, |Re_b|)
         delta/a, and it is below Re*/10 for every motion (module docstring).
         Zero when nothing turns. The torque's error is of second order in Re
-        and smaller. Accuracy and range: :mod:`lubrication._inertia_table`.
+        and smaller. Accuracy and range: :mod:`lubrication.inertia_table`.
     """
     d = check_range("delta_over_a", delta_over_a, 0.0, math.inf, low_open=True)
     kappa_arr, re_a_arr, re_b_arr = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (kappa, re_a, re_b)))
@@ -359,7 +336,7 @@ def inertial_error_estimate(kappa, delta_over_a: float, re_a, re_b):
             if not np.all(np.isfinite(values)):
                 msg = f"{name} must be finite everywhere"
                 raise ValueError(msg)
-    from ._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
+    from .inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
 
     if kappa_arr.ndim == 0:
         return _error_estimate(kappa, d, re_a, re_b, KAPPA_NODES, DELTA_NODES, TABLE)
@@ -410,7 +387,7 @@ def inertial_force_correction(annulus: Annulus, motion: Motion, fluid: Fluid) ->
     f_eps^(1) = rho a^3 L (C_aa W_a^2 + 2 C_ab W_a W_b + C_bb W_b^2), with
     W = Omega - chi' and the coefficients of
     :func:`lubrication.navier_stokes.first_inertial_correction` interpolated
-    from :mod:`lubrication._inertia_table`; f_chi and T_a have no first-order
+    from :mod:`lubrication.inertia_table`; f_chi and T_a have no first-order
     term. With it the Stokes force is off by O(Re*^2): 9e-5 of it at Re* = 1,
     8e-4 at Re* = 3 (docs/inertia/inertia.md). The
     rotating-frame force (:func:`frame_forces`) is separate and exact; the
@@ -431,7 +408,7 @@ def first_order_f_eps(kappa, delta_over_a: float, a: float, rho, length: float, 
 
     ``a`` (m), ``rho`` (kg/m^3), ``length`` (m); W = Omega - chi' in rad/s.
     """
-    from ._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
+    from .inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
 
     arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (kappa, rho, w_a, w_b)))
     flat = [np.ascontiguousarray(v).ravel() for v in arrays]
@@ -496,3 +473,16 @@ def _first_order_f_eps_along(kappa, rho, w_a, w_b, d, a, length, kappa_nodes, de
     for i in range(kappa.size):
         out[i] = _first_order_f_eps(kappa[i], d, a, rho[i], length, w_a[i], w_b[i], kappa_nodes, delta_nodes, table)
     return out
+
+
+@jit(inline="always")
+def inertial_f_eps(data, a, b, length, kappa, w_a, w_b):
+    """The first inertial correction to f_eps of a kernel's packed ``data`` (:mod:`lubrication.kernels`);
+    zero for a model without it."""
+    start = int(data[kernels.INERTIA])
+    if start == 0:
+        return 0.0
+    nk, nd, nc = int(data[kernels.N_KAPPA]), int(data[kernels.N_DELTA]), int(data[kernels.N_COLUMNS])
+    table = start + nk + nd
+    return _first_order_f_eps(kappa, (b - a) / a, a, data[kernels.RHO], length, w_a, w_b, data[start:start + nk],
+                              data[start + nk:table], data[table:table + nk * nd * nc].reshape((nk, nd, nc)))

@@ -106,11 +106,12 @@ from functools import lru_cache
 import numpy as np
 
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
-from .inertia import frame_forces, relative_reynolds
+from .inertia import KAPPA_AXIS, TABLE_COLUMNS, frame_forces, relative_reynolds
 from .stokes import _check_geometry, _discretisation, _require, default_mesh
 
 __all__ = ["FRAME_TERMS", "MOTIONS", "InertialCoefficients", "InertialSweep", "NavierStokesForces",
-           "first_inertial_correction", "inertial_mesh", "inertial_sweep", "navier_stokes_forces"]
+           "build_error_table", "first_inertial_correction", "inertial_mesh", "inertial_sweep",
+           "navier_stokes_forces", "table_row"]
 
 logger = logging.getLogger(__name__)
 
@@ -669,3 +670,29 @@ def first_inertial_correction(delta_over_a: float, kappa: float, *, n_around: in
     return InertialCoefficients(delta_over_a=d, kappa=kappa, c_eps=out["eps"], c_chi=out["chi"],
                                 c_t=out["t"], stokes=stokes, dofs=disc.dofs,
                                 wall_time_s=time.perf_counter() - start)
+
+
+# -- the table of the first inertial correction ------------------------------------------------------
+
+def table_row(coefficients) -> np.ndarray:
+    """The :data:`lubrication.inertia.TABLE_COLUMNS` of one :class:`InertialCoefficients`."""
+    k, d = coefficients.kappa, coefficients.delta_over_a
+    b = 1.0 + d
+    zeta = math.sqrt(1.0 - k * k)
+    r, c = coefficients.stokes, coefficients.c_eps
+    chi_scale = (2.0 + k * k) * zeta * d * d / k
+    return np.array([r[1, 1] * chi_scale, r[1, 2] * chi_scale / b,
+                     c[1, 1] / k, c[1, 2] / (k * b), c[2, 2] / (k * b * b)])
+
+
+def build_error_table(kappa_nodes, delta_nodes, **mesh) -> np.ndarray:
+    """Solve :func:`first_inertial_correction` on a grid; shape (nk, nd, 5): the table of
+    :mod:`lubrication.inertia_table`, which ``generators/inertia_table.py`` writes.
+
+    A node at kappa = 0 is solved at :data:`KAPPA_AXIS`. ``mesh`` goes to the solver.
+    """
+    table = np.zeros((len(kappa_nodes), len(delta_nodes), len(TABLE_COLUMNS)))
+    for i, k in enumerate(kappa_nodes):
+        for j, d in enumerate(delta_nodes):
+            table[i, j] = table_row(first_inertial_correction(d, max(k, KAPPA_AXIS), **mesh))
+    return table

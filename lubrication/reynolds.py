@@ -6,7 +6,7 @@
 centres), periodic in theta, for the thin-gap profile (B1), the exact gap
 between the eccentric circles, or any smooth periodic profile a user supplies.
 The kernels and the discretisation are described in
-:mod:`lubrication._kernels`; this module checks inputs, builds the grids and
+:mod:`lubrication.reynolds_kernels`; this module checks inputs, builds the grids and
 picks the kernel.
 """
 
@@ -19,12 +19,15 @@ from typing import Callable
 
 import numpy as np
 
-from . import _kernels
-from .geometry import Annulus, Fluid, FluidForces, Motion
+from numerics.jit import jit
 
-__all__ = ["GRIDS", "PROFILES", "GapProfile", "ReynoldsPressure", "reynolds_forces",
-           "reynolds_pressure", "MIN_CELLS", "MAX_POINTS_PER_CELL", "uniform_grid_cells", "uniform_grid_error",
-           "uniform_grid_reach"]
+from . import reynolds_kernels
+from .geometry import Annulus, Fluid, FluidForces, Motion
+from .kernels import model_block
+
+__all__ = ["GRIDS", "MAX_CELLS", "MAX_POINTS_PER_CELL", "MIN_CELLS", "PROFILES", "TRAJECTORY_CELLS", "GapProfile",
+           "ReynoldsPressure", "film_block", "film_rule", "psi_rule", "reynolds_forces", "reynolds_kernel",
+           "reynolds_pressure", "uniform_grid_cells", "uniform_grid_error", "uniform_grid_reach"]
 
 GRIDS = ("sommerfeld", "uniform")
 PROFILES = ("thin", "eccentric")
@@ -112,7 +115,7 @@ class ReynoldsPressure:
 
 
 @lru_cache(maxsize=64)
-def _psi_rule(n: int, m: int):
+def psi_rule(n: int, m: int):
     """Composite m-point Gauss-Legendre rule on N equal cells of psi in (-pi, pi].
 
     Returns cos, sin, 1 - cos, 1 + cos of psi and the weights at the N*m
@@ -260,15 +263,15 @@ def film_setup(annulus: Annulus, profile, n: int, grid: str, points_per_cell: in
         psi at the pressure nodes.
     """
     _check_discretisation(n, grid, points_per_cell)
-    rule, nodes = _psi_rule(n, points_per_cell)
+    rule, nodes = psi_rule(n, points_per_cell)
     kappa, omk = annulus.kappa, annulus.one_minus_kappa
     if isinstance(profile, GapProfile):
         kappa, centre, kappa_g, h_tab, q_tab = _tabulate(profile, annulus, n, points_per_cell, grid)
-        return _kernels.TABULATED, kappa, 1.0 - kappa, kappa_g, 1.0 - kappa_g, centre, h_tab, q_tab, rule, nodes
+        return reynolds_kernels.TABULATED, kappa, 1.0 - kappa, kappa_g, 1.0 - kappa_g, centre, h_tab, q_tab, rule, nodes
     if profile not in PROFILES:
         msg = f"profile must be one of {', '.join(PROFILES)} or a GapProfile, got {profile!r}"
         raise ValueError(msg)
-    kind = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
+    kind = reynolds_kernels.THIN if profile == "thin" else reynolds_kernels.ECCENTRIC
     kappa_g, omk_g = (kappa, omk) if grid == "sommerfeld" else (0.0, 1.0)
     return kind, kappa, omk, kappa_g, omk_g, 0.0, _EMPTY, _EMPTY, rule, nodes
 
@@ -278,7 +281,7 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, profile, n: int, grid
     """Run the full-film kernel; return (f_eps, f_chi, T_a), the grid centre and kappa_g."""
     kind, kappa, omk, kappa_g, omk_g, centre, h_tab, q_tab, rule, _ = film_setup(
         annulus, profile, n, grid, points_per_cell)
-    f = _kernels.film_forces(kind, annulus.a, annulus.b, fluid.mu, annulus.length, kappa, omk,
+    f = reynolds_kernels.film_forces(kind, annulus.a, annulus.b, fluid.mu, annulus.length, kappa, omk,
                              motion.eps_dot, motion.w_a, motion.w_b, kappa_g, omk_g, *rule,
                              points_per_cell, h_tab, q_tab, math.cos(centre), math.sin(centre), phi_out)
     return f, centre, kappa_g
@@ -325,10 +328,54 @@ def reynolds_pressure(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int 
     _check_discretisation(n, grid, points_per_cell)
     phi = np.empty(n)
     _, centre, kappa_g = _solve(annulus, motion, fluid, profile, n, grid, points_per_cell, phi)
-    _, nodes = _psi_rule(n, points_per_cell)
+    _, nodes = psi_rule(n, points_per_cell)
     theta = centre + _theta_of_psi(nodes, kappa_g)
     p = 12.0 * fluid.mu * annulus.a * phi
     # zero mean in theta: trapezoid rule in psi with the map's Jacobian
     weights = _jacobian(nodes, kappa_g)
     p -= np.sum(p * weights) / np.sum(weights)
     return ReynoldsPressure(theta=theta, p=p)
+
+
+# -- the kernel of the model "reynolds" (lubrication.film) ------------------------------------------
+
+#: The cells of a trajectory's film by default: on the Sommerfeld grid the thin-gap forces are exact to
+#: rounding from 8 (one instant takes 32, and 256 with cavitation, whose boundary converges as 1/N^2).
+TRAJECTORY_CELLS = 16
+#: The block of a film model's kernel: the gap profile, the Sommerfeld grid (1) or not, Gauss points per
+#: cell, the cavitation model (its index in lubrication.cavitation.CAVITATION_MODELS), p_cav and p_ref (Pa),
+#: then the rule's five arrays (cos, sin, 1 - cos, 1 + cos of psi, weights).
+_PROFILE, _SOMMERFELD, _POINTS, _CAVITATION, _P_CAV, _P_REF, _RULE = range(7)
+
+
+def film_block(n: int = TRAJECTORY_CELLS, grid: str = "sommerfeld", profile: str = "thin", points_per_cell: int = 1,
+               cavitation: int = 0, p_cav: float = 0.0, p_ref: float = 101325.0) -> np.ndarray:
+    """The packed block of a Reynolds film's kernel (:func:`reynolds_kernel`, the cavitating one)."""
+    _check_discretisation(n, grid, points_per_cell)
+    if profile not in PROFILES:
+        msg = f"profile must be one of {', '.join(PROFILES)}, got {profile!r}"
+        raise ValueError(msg)
+    gap = reynolds_kernels.THIN if profile == "thin" else reynolds_kernels.ECCENTRIC
+    rule = psi_rule(n, points_per_cell)[0]
+    head = [gap, float(grid == "sommerfeld"), points_per_cell, cavitation, p_cav, p_ref]
+    return np.concatenate([np.asarray(head, dtype=float), *rule])
+
+
+@jit(inline="always")
+def film_rule(block):
+    """The grid's kappa flag, points per cell and the rule's five arrays (views of ``block``)."""
+    m = (block.size - _RULE) // 5
+    r = _RULE
+    return (block[_SOMMERFELD] != 0.0, int(block[_POINTS]), block[r:r + m], block[r + m:r + 2 * m],
+            block[r + 2 * m:r + 3 * m], block[r + 3 * m:r + 4 * m], block[r + 4 * m:r + 5 * m])
+
+
+@jit
+def reynolds_kernel(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
+    """The "reynolds" model's kernel (:mod:`lubrication.kernels`): the full film on the block's grid."""
+    block = model_block(data)
+    sommerfeld, m, cpsi, spsi, vpsi, ppsi, wpsi = film_rule(block)
+    kappa_g, omk_g = (kappa, omk) if sommerfeld else (0.0, 1.0)
+    none = np.empty(0)  # no tabulated profile, no pressure wanted (a global would be read-only)
+    return reynolds_kernels.film_forces(int(block[_PROFILE]), a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, kappa_g,
+                                omk_g, cpsi, spsi, vpsi, ppsi, wpsi, m, none, none, 1.0, 0.0, none)

@@ -49,7 +49,7 @@ and the scales between few; ``clustering`` = (c_n, c_w) grades the grid from
 the angular scale beta^c_n at the narrow gap to beta^c_w on the wide side with
 about N/(pi (c_n - c_w) log(1/beta)) cells per e-fold of theta in between. The
 default (:func:`default_clustering`) is c_n = c_w = 1/2 (halfway on a log
-scale, as the Stokes meshes, :mod:`lubrication._stokes_mesh`) while
+scale, as the Stokes meshes, :mod:`lubrication.stokes_mesh`) while
 beta >= 1/25 (kappa <= 0.9968); closer to contact c_n = 1 - log 5/log(1/beta)
 and c_w = 1 - c_n: the scale 5 beta at the narrow gap, 1/5 on the wide side.
 In the kernels' terms psi = 2 arctan(tan(xi/2) exp(gamma sin^2(xi/2))),
@@ -88,7 +88,7 @@ takes h^3 phi' = (U/2) h + Q - c_j (the theta-flux balances the squeeze alone;
 exact for a long bearing), corrected by the flux that leaves the cell axially:
 h^3 phi' = (U/2) h + Q + int h^3 d - c_j, with d = -(1/h^3) d/dz (h^3 dphi/dz)
 from the discrete solution, linear in the cell
-(:func:`lubrication._kernels2d.flux_correction`); then the trapezoid rule over
+(:func:`lubrication.reynolds2d_kernels.flux_correction`); then the trapezoid rule over
 the lines. Without the correction the cells would carry a spurious intra-cell
 Couette flux whose force is O(dpsi^2) of the long-bearing one: harmless at the
 apparatus' length, but it swamps a short bearing's force, which is
@@ -119,7 +119,7 @@ Solvers
   generalised eigenvectors of K_z v = lam M_z v (M_z-orthonormal) turn the
   system into one periodic tridiagonal problem per z-mode,
   (L_theta + lam M_theta) psi = -c r with c = v^T w_z, whose force integrals
-  need no reconstruction of the field (:func:`lubrication._kernels2d.modal_film`).
+  need no reconstruction of the field (:func:`lubrication.reynolds2d_kernels.modal_film`).
   The mid-plane symmetry halves the z-grid. Cost O(N n_z) per solve after an
   O(n_z^3) eigen-decomposition that depends only on the z-grid and is cached.
 * A gap h(theta, z) (:class:`GapProfile2D`, e.g. :func:`tilted_gap`): the
@@ -149,7 +149,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from . import _kernels, _kernels2d
+from . import reynolds2d_kernels, reynolds_kernels
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
 from .reynolds import (
     PROFILES,
@@ -158,8 +158,8 @@ from .reynolds import (
     _check_positive,
     _gauss_points,
     _jacobian,
-    _psi_rule,
     _theta_of_psi,
+    psi_rule,
 )
 
 __all__ = [
@@ -356,7 +356,7 @@ def _theta_rule(n: int, m: int, gamma: float):
     at the cell edges. gamma = 0 is the one-dimensional solver's rule, psi = xi.
     """
     if gamma == 0.0:
-        rule, nodes = _psi_rule(n, m)
+        rule, nodes = psi_rule(n, m)
         stretch = np.ones(n * m)
         stretch.setflags(write=False)
         return (*rule, stretch), nodes
@@ -469,7 +469,7 @@ class _Setup:
     centre: float
     rule: tuple
     nodes: np.ndarray
-    cell_rule: tuple  # (tpos, lower0, lower1) of _kernels2d.cell_masses
+    cell_rule: tuple  # (tpos, lower0, lower1) of reynolds2d_kernels.cell_masses
     m: int
     h_lines: np.ndarray  # (n_lines, N m), or (1, 0) for a built-in profile
     q_lines: np.ndarray
@@ -574,7 +574,7 @@ def _cell_rule(m: int):
     """Gauss points t_p in [0, 1] and the integrals of the Lagrange basis l_i through them.
 
     lower0[p, i] = int_0^(t_p) l_i(t) (1 - t) dt and lower1[p, i] = int_0^(t_p) l_i(t) t dt
-    (:func:`lubrication._kernels2d.cell_masses`).
+    (:func:`lubrication.reynolds2d_kernels.cell_masses`).
     """
     from numpy.polynomial import Polynomial
 
@@ -611,10 +611,10 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
     a = annulus.a
     if isinstance(profile, (GapProfile, GapProfile2D)):
         kappa, omk, centre = _profile_scale(profile, annulus)
-        kind = _kernels.TABULATED
+        kind = reynolds_kernels.TABULATED
     elif profile in PROFILES:
         kappa, omk, centre = annulus.kappa, annulus.one_minus_kappa, 0.0
-        kind = _kernels.THIN if profile == "thin" else _kernels.ECCENTRIC
+        kind = reynolds_kernels.THIN if profile == "thin" else reynolds_kernels.ECCENTRIC
     else:
         msg = f"profile must be one of {', '.join(PROFILES)}, a GapProfile or a GapProfile2D, got {profile!r}"
         raise ValueError(msg)
@@ -635,7 +635,7 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
     if not isinstance(profile, GapProfile2D):
         z, weights, *modes = _axial_modes(half_length, n_half, layer, sealed)
         h_lines, q_lines = (_NO_LINES, _NO_LINES)
-        if kind == _kernels.TABULATED:
+        if kind == reynolds_kernels.TABULATED:
             h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, gamma, centre, None)
         return _Setup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
                       z, weights, True, tuple(modes))
@@ -652,9 +652,9 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
 def _line_data(setup: _Setup, annulus: Annulus, eps_dot: float):
     n_lines = setup.h_lines.shape[0]
     n = setup.nodes.size
-    integrals = np.zeros((n_lines, n, _kernels.N_INTEGRALS))
-    masses = np.zeros((n_lines, n, _kernels2d.N_MASSES))
-    _kernels2d.film_lines(setup.kind, annulus.a, annulus.b, setup.kappa, setup.omk, eps_dot, setup.kappa_g,
+    integrals = np.zeros((n_lines, n, reynolds_kernels.N_INTEGRALS))
+    masses = np.zeros((n_lines, n, reynolds2d_kernels.N_MASSES))
+    reynolds2d_kernels.film_lines(setup.kind, annulus.a, annulus.b, setup.kappa, setup.omk, eps_dot, setup.kappa_g,
                           setup.omk_g, *setup.rule, *setup.cell_rule, setup.m, setup.h_lines, setup.q_lines,
                           integrals, masses)
     return integrals, masses
@@ -668,15 +668,15 @@ def _general_system(setup: _Setup, integrals, masses, half_u: float, sealed: boo
     g_lines = np.empty((n_lines, n))
     r_lines = np.empty((n_lines, n))
     for k in range(n_lines):
-        g_lines[k], r_lines[k] = _kernels2d.line_load(integrals[k], half_u)
+        g_lines[k], r_lines[k] = reynolds2d_kernels.line_load(integrals[k], half_u)
 
     def assemble(conductances):
-        size = (n_lines - 1) * n * _kernels2d.ENTRIES_PER_CELL
+        size = (n_lines - 1) * n * reynolds2d_kernels.ENTRIES_PER_CELL
         rows = np.empty(size, dtype=np.int64)
         cols = np.empty(size, dtype=np.int64)
         vals = np.empty(size)
         rhs = np.zeros(n_lines * n)
-        _kernels2d.assemble_general(conductances, masses, r_lines, setup.z, rows, cols, vals, rhs)
+        reynolds2d_kernels.assemble_general(conductances, masses, r_lines, setup.z, rows, cols, vals, rhs)
         return sp.csr_matrix((vals, (rows, cols)), shape=(rhs.size, rhs.size)), rhs
 
     matrix, rhs = assemble(g_lines)
@@ -700,12 +700,12 @@ def _general_solve(matrix, rhs, known) -> np.ndarray:
 
 
 def _general_outflow(setup: _Setup, integrals, masses, half_u: float, phi, axial, end_lines) -> np.ndarray:
-    """The axial outflow density d of every line (:func:`lubrication._kernels2d.flux_correction`).
+    """The axial outflow density d of every line (:func:`lubrication.reynolds2d_kernels.flux_correction`).
 
     d = (M_z^-1 (x) I) blockdiag(M_theta)^-1 Z phi over the unknown lines, Z the
     assembled axial part, which for a z-independent gap is exactly the modal
     sum_m v_m lam_m psi_m; on an open end line M_theta d = -r
-    (:func:`lubrication._kernels2d.end_outflow`).
+    (:func:`lubrication.reynolds2d_kernels.end_outflow`).
     """
     import scipy.sparse as sp
     from scipy.sparse.linalg import splu
@@ -716,7 +716,7 @@ def _general_outflow(setup: _Setup, integrals, masses, half_u: float, phi, axial
     jp = (j + 1) % n
     blocks = []
     for k in lines:
-        m00, m01, m11 = (masses[k, :, c] for c in (_kernels2d.M00, _kernels2d.M01, _kernels2d.M11))
+        m00, m01, m11 = (masses[k, :, c] for c in (reynolds2d_kernels.M00, reynolds2d_kernels.M01, reynolds2d_kernels.M11))
         blocks.append(sp.csr_matrix((np.concatenate((m00, m11, m01, m01)),
                                      (np.concatenate((j, jp, j, jp)), np.concatenate((j, jp, jp, j)))),
                                     shape=(n, n)))
@@ -728,7 +728,7 @@ def _general_outflow(setup: _Setup, integrals, masses, half_u: float, phi, axial
     outflow = np.zeros((n_lines, n))
     outflow[keep] = splu(sp.kron(m_z, sp.identity(n), format="csc")).solve(u).reshape(keep.size, n)
     for k in end_lines:
-        _kernels2d.end_outflow(integrals[k], masses[k], half_u, outflow[k])
+        reynolds2d_kernels.end_outflow(integrals[k], masses[k], half_u, outflow[k])
     return outflow
 
 
@@ -765,7 +765,7 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int, n_axial: i
     setup = _setup(annulus, profile, n, n_axial, ends, clustering, points_per_cell, end_layer)
     a, mu = annulus.a, fluid.mu
     u_a = a * motion.w_a
-    u_b = (annulus.b if setup.kind == _kernels.ECCENTRIC else a) * motion.w_b
+    u_b = (annulus.b if setup.kind == reynolds_kernels.ECCENTRIC else a) * motion.w_b
     half_u = 0.5 * (u_a + u_b)
     integrals, masses = _line_data(setup, annulus, motion.eps_dot)
     sealed = ends == "sealed"
@@ -775,25 +775,25 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int, n_axial: i
     if setup.modes is not None:
         lam, coef, vec = setup.modes
         if not (field or truncate):
-            sums = _kernels2d.modal_film(integrals[0], masses[0], u_a, u_b, lam, coef, setup.weights.sum(),
+            sums = reynolds2d_kernels.modal_film(integrals[0], masses[0], u_a, u_b, lam, coef, setup.weights.sum(),
                                          end_weight, np.empty((0, setup.nodes.size)))
             return setup, sums, None, None
         modes = np.empty((lam.size, setup.nodes.size))
-        _kernels2d.modal_film(integrals[0], masses[0], u_a, u_b, lam, coef, setup.weights.sum(), end_weight,
+        reynolds2d_kernels.modal_film(integrals[0], masses[0], u_a, u_b, lam, coef, setup.weights.sum(), end_weight,
                               modes)
         phi = np.zeros((n_lines, setup.nodes.size))
         outflow = np.zeros((n_lines, setup.nodes.size))
         phi[:vec.shape[0]] = vec @ modes
         outflow[:vec.shape[0]] = vec @ (lam[:, None] * modes)
         if not sealed:
-            _kernels2d.end_outflow(integrals[0], masses[0], half_u, outflow[-1])
+            reynolds2d_kernels.end_outflow(integrals[0], masses[0], half_u, outflow[-1])
         integrals = np.repeat(integrals, n_lines, axis=0)
         masses = np.repeat(masses, n_lines, axis=0)
     else:
         phi, outflow = _solve_general(setup, integrals, masses, half_u, sealed)
     y_cav = (p_cav - p_end) / (12.0 * mu * a)
     lines = np.empty((n_lines, 3))
-    sums = _kernels2d.lines_film(integrals, masses, u_a, u_b, phi, outflow, setup.weights, truncate, y_cav, lines)
+    sums = reynolds2d_kernels.lines_film(integrals, masses, u_a, u_b, phi, outflow, setup.weights, truncate, y_cav, lines)
     return setup, sums, phi, lines
 
 

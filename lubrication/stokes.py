@@ -24,7 +24,7 @@ five resistance functions of (kappa, delta/a) (:class:`StokesResistance`).
 
 Discretisation (each choice measured against its alternatives on this
 problem): a structured biquadratic mesh in bipolar coordinates
-(:mod:`lubrication._stokes_mesh`) with nodes on the true circles; Taylor-Hood
+(:mod:`lubrication.stokes_mesh`) with nodes on the true circles; Taylor-Hood
 Q2-Q1 elements; the symmetric-gradient form 2 mu D(u):D(v), whose natural
 boundary term is the true traction (the vector-Laplacian form gives the same
 velocity and a torque wrong by 2 pi mu a^2 Omega_a); one pressure value pinned
@@ -51,8 +51,11 @@ from pathlib import Path
 
 import numpy as np
 
+from numerics.keys import Key
+
 from .closed_form import lubrication_forces
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_range
+from .spec import ForceModelSpec
 
 __all__ = ["StokesResistance", "StokesFlow", "default_mesh", "stokes_resistance",
            "stokes_forces", "stokes_flow", "write_vtu", "plot_flow"]
@@ -268,7 +271,7 @@ class _Discretisation:
         )
         from skfem.helpers import ddot, div, sym_grad
 
-        from ._stokes_mesh import build_mesh
+        from .stokes_mesh import build_mesh
 
         grid = build_mesh(1.0, b, eps, n_around, n_across, clustering)
         self.mesh = grid.mesh
@@ -472,7 +475,7 @@ def stokes_resistance(a: float, b: float, kappa: float, *, n_around: int | None 
         product; the error falls like the fourth power of each.
     clustering : float
         Angular clustering of the cells into the narrow gap, in [0, 1]
-        (:mod:`lubrication._stokes_mesh`).
+        (:mod:`lubrication.stokes_mesh`).
     mu : float
         Dynamic viscosity (Pa s).
 
@@ -634,3 +637,36 @@ def plot_flow(flow: StokesFlow):
     ax.set_ylabel("y (mm)")
     fig.tight_layout()
     return fig
+
+
+#: The gaps over which the default mesh's accuracy was measured against the exact solution
+#: (benchmarks/accuracy.py): delta/a in [0.003, 1], kappa up to 0.99, where the five coefficients
+#: err by at most 2.5e-6. Closer to contact the mesh does not resolve the gap (at 1 - kappa = 1e-9
+#: f_chi came out 71 % low) and the exact forces of "stokes-exact" are the answer.
+MEASURED_DELTA_OVER_A = (0.003, 1.0)
+MEASURED_KAPPA = 0.99
+
+
+def check_measured(annulus: Annulus) -> None:
+    """Refuse an annulus outside the range where the finite elements' accuracy was measured."""
+    lo, hi = MEASURED_DELTA_OVER_A
+    if not lo <= annulus.delta_over_a <= hi:
+        msg = (f"delta_over_a must be in [{lo:g}, {hi:g}] for the finite-element Stokes model, where its accuracy "
+               f"was measured, got {annulus.delta_over_a:.6g}; the model 'stokes-exact' holds for [1e-4, 10]")
+        raise ValueError(msg)
+    if annulus.kappa > MEASURED_KAPPA:
+        msg = (f"kappa must be in [0, {MEASURED_KAPPA:g}] for the finite-element Stokes model, whose mesh does not "
+               f"resolve a narrower gap (measured to kappa = {MEASURED_KAPPA:g}), got 1 - kappa = "
+               f"{annulus.one_minus_kappa:.3g}; the model 'stokes-exact' is exact to 1 - kappa = 1e-9")
+        raise ValueError(msg)
+
+
+#: The model as the registry knows it (:mod:`lubrication.registry`).
+MODEL = ForceModelSpec(
+    "stokes", "2-D Stokes flow by finite elements (the flow field, a check of stokes-exact): delta/a in "
+    "[0.003, 1], kappa <= 0.99; in a trajectory the exact forces stand in for it", stokes_forces,
+    options={"n_around": Key("finite elements: cells around the annulus (default by delta/a)", low=8, high=1 << 16,
+                             integer=True),
+             "n_across": Key("finite elements: cells across the gap (default by delta/a)", low=1, high=1024,
+                             integer=True)},
+    in_trajectories="stokes-exact", extra="fem", check=check_measured)

@@ -32,7 +32,7 @@ Boundaries
 
 Discretisation
 --------------
-The structured bipolar mesh of :mod:`lubrication._stokes_mesh` extruded in z:
+The structured bipolar mesh of :mod:`lubrication.stokes_mesh` extruded in z:
 27-node hexahedra with their nodes on the true circles, nodes graded toward the
 gap end geometrically (:func:`lubrication.reynolds2d.axial_grid`, end layer
 ``end_layer``); Taylor-Hood Q2-Q1; the symmetric-gradient form; one sparse LU;
@@ -68,7 +68,7 @@ def extruded_mesh(a: float, b: float, eps: float, n_around: int, n_across: int, 
                   clustering: float = 0.5):
     """27-node hexahedral mesh of the eccentric annulus between the planes z[0] and z[-1].
 
-    The cross-section is that of :func:`lubrication._stokes_mesh.build_mesh`
+    The cross-section is that of :func:`lubrication.stokes_mesh.build_mesh`
     (uniform in the across-gap parameter s and the mesh angle psi); every node,
     mid-edge, mid-face and centre nodes included, is the image of its
     (s, psi, z) position, so the walls' nodes lie on the true circles.
@@ -82,7 +82,7 @@ def extruded_mesh(a: float, b: float, eps: float, n_around: int, n_across: int, 
     from skfem import ElementHex2, MeshHex1, MeshHex2
     from skfem.assembly import Dofs
 
-    from ._stokes_mesh import annulus_map
+    from .stokes_mesh import annulus_map
 
     z = np.asarray(z, dtype=float)
     psi = -np.pi + 2.0 * np.pi * np.arange(n_around + 1) / n_around
@@ -288,7 +288,7 @@ def stokes3d_resistance(a: float, b: float, kappa: float, length: float, *, n_ar
         l_end (m) of the geometric axial grading; default the narrowest gap
         (b - a)(1 - kappa), at least (b - a)/8.
     clustering : float
-        Angular clustering of the cross-section (:mod:`lubrication._stokes_mesh`).
+        Angular clustering of the cross-section (:mod:`lubrication.stokes_mesh`).
     mu : float
         Dynamic viscosity (Pa s).
 

@@ -211,12 +211,13 @@ from __future__ import annotations
 import math
 from dataclasses import astuple, dataclass
 
-from ._jit import jit
-from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance
+from numerics.jit import jit
 
-__all__ = ["DELTA_OVER_A_RANGE", "EXACT_NAMES", "MIN_ONE_MINUS_KAPPA_EXACT", "ExactResistance",
-           "exact_forces", "exact_ratios", "exact_resistance", "stokes_exact_forces",
-           "stokes_exact_ratios", "stokes_exact_resistance"]
+from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance
+from .spec import ForceModelSpec
+
+__all__ = ["DELTA_OVER_A_RANGE", "EXACT_NAMES", "MIN_ONE_MINUS_KAPPA_EXACT", "ExactResistance", "check_domain",
+           "exact_ratios", "exact_resistance", "stokes_exact_forces", "stokes_exact_ratios", "stokes_exact_resistance"]
 
 #: Order of the coefficients returned by :func:`stokes_exact_resistance`: the five of
 #: :data:`lubrication.geometry.RESISTANCE_NAMES`, then the torque on the outer wall
@@ -303,24 +304,6 @@ def stokes_exact_resistance(a, delta, mu, kappa, omk):
 
 
 @jit
-def stokes_exact_forces(a, delta, mu, length, kappa, omk, eps_dot, w_a, w_b):
-    """Exact Stokes force and torque on the inner cylinder, whole length.
-
-    Same arguments and units as :func:`lubrication.closed_form.lubrication_forces`:
-    radius a (m), mean gap (m), viscosity (Pa s), length (m), kappa and 1 - kappa,
-    eps' (m/s), W_a and W_b (rad/s).
-
-    Returns
-    -------
-    f_eps, f_chi, T_a : float
-        N, N, N m.
-    """
-    r = stokes_exact_resistance(a, delta, mu, kappa, omk)
-    return (length * r[0] * eps_dot, length * (r[1] * w_a + r[3] * w_b),
-            length * (r[2] * w_a + r[4] * w_b))
-
-
-@jit
 def stokes_exact_ratios(delta_over_a, kappa, omk):
     """The five coefficients over their lubrication forms (2.5)-(2.7), RESISTANCE_NAMES order.
 
@@ -375,7 +358,8 @@ class ExactResistance:
         return Resistance(*self.as_tuple()[:5])
 
 
-def _check_domain(annulus: Annulus) -> None:
+def check_domain(annulus: Annulus) -> None:
+    """Refuse an annulus outside the range where the digits of the module docstring were measured."""
     lo, hi = DELTA_OVER_A_RANGE
     d = annulus.delta_over_a
     # slack for rounding: (b - a)/a of b = 11 a may exceed 10 by an ulp, and
@@ -403,27 +387,34 @@ def exact_resistance(annulus: Annulus, fluid: Fluid) -> ExactResistance:
     -------
     ExactResistance
     """
-    _check_domain(annulus)
+    check_domain(annulus)
     r = stokes_exact_resistance(annulus.a, annulus.delta, fluid.mu, annulus.kappa,
                                 annulus.one_minus_kappa)
     return ExactResistance(*(annulus.length * c for c in r))
 
 
-def exact_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
-    """Exact Stokes force and torque on the inner cylinder, whole length.
+def stokes_exact_forces(annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
+    """Exact Stokes force and torque on the inner cylinder, whole length (the Python face of the
+    "stokes-exact" model; the kernel trajectories call is :func:`lubrication.registry.kernel_model`'s).
 
     Returns
     -------
     FluidForces
         f_eps, f_chi (N) and T_a (N m), ``model="stokes-exact"``.
     """
-    _check_domain(annulus)
-    f = stokes_exact_forces(annulus.a, annulus.delta, fluid.mu, annulus.length, annulus.kappa,
-                            annulus.one_minus_kappa, motion.eps_dot, motion.w_a, motion.w_b)
-    return FluidForces(*f, model="stokes-exact")
+    r = exact_resistance(annulus, fluid)
+    return FluidForces(r.f_eps_per_eps_dot * motion.eps_dot,
+                       r.f_chi_per_w_a * motion.w_a + r.f_chi_per_w_b * motion.w_b,
+                       r.t_a_per_w_a * motion.w_a + r.t_a_per_w_b * motion.w_b, model="stokes-exact")
 
 
 def exact_ratios(annulus: Annulus) -> tuple[float, ...]:
     """The five exact coefficients over (2.5)-(2.7), RESISTANCE_NAMES order (finite at kappa = 0)."""
-    _check_domain(annulus)
+    check_domain(annulus)
     return stokes_exact_ratios(annulus.delta_over_a, annulus.kappa, annulus.one_minus_kappa)
+
+
+#: The model as the registry knows it (:mod:`lubrication.registry`).
+MODEL = ForceModelSpec(
+    "stokes-exact", "the exact 2-D Stokes forces of the eccentric annulus (closed form), any delta/a in [1e-4, 10]: "
+    "the default", stokes_exact_forces, resistance=stokes_exact_resistance, check=check_domain)

@@ -25,8 +25,8 @@ from dynamics.app.auto import (
 )
 from dynamics.app.cli import main
 from dynamics.scenes import parse_scene
-from lubrication.forces import Resistance, resistance
-from lubrication.geometry import Annulus, Fluid
+from lubrication.geometry import Annulus, Fluid, Resistance
+from lubrication.registry import resistance
 
 THIN, APPARATUS = 0.01, 0.40625  # a = 0.8 cm, b = 1.125 cm
 SEPARATING = 5e-2
@@ -175,13 +175,13 @@ def test_chosen_closed_forms_meet_the_tolerance_against_stokes(kappa):
 @pytest.mark.slow
 @pytest.mark.parametrize(("tolerance", "delta"), [(1e-2, APPARATUS), (1e-4, THIN)])
 def test_chosen_stokes_forces_meet_the_tolerance_against_a_finite_element_solve(tolerance, delta):
-    from dynamics.equations.forces import force_model
     from lubrication.geometry import Motion
+    from lubrication.registry import kernel_model
     from lubrication.stokes import default_mesh
 
     choice = choose_forces(tolerance, delta, 0.99)
     assert choice.model == "stokes-exact"
-    model = force_model(choice.model, **choice.options)
+    model = kernel_model(choice.model, **choice.options)
     n_around, n_across = default_mesh(delta)  # the default mesh refined by 1.5, for the truth
     for kappa in (0.42, 0.97):
         annulus, truth = stokes_truth(delta, kappa, n_around=round(1.5 * n_around),

@@ -163,7 +163,7 @@ def test_all_models_report_each_component_against_its_own_size():
     """Near contact f_chi is a small component of the force: its difference is judged against itself."""
     from types import SimpleNamespace
 
-    from dynamics.app.cli import _relative_differences
+    from dynamics.app.commands.forces import _relative_differences
 
     ref = SimpleNamespace(f_eps=1000.0, f_chi=1.0, T_a=2.0)
     other = SimpleNamespace(f_eps=1000.0, f_chi=1.33, T_a=2.0)
@@ -241,9 +241,11 @@ def _report(max_error, re_star, corrected=None):
 def test_inertia_warning_judges_the_forces_the_run_used(report, expected):
     """`snail run` warns of the inertial error of the forces it used: the plain forces' first-order
     error, or what the first inertial correction leaves and whether Re* went past its comparisons."""
-    from dynamics.app.cli import _inertia_warning
+    from dynamics.equations.limits import inertia_warning
 
-    warning = _inertia_warning(report)
+    warning = inertia_warning(report)
     assert (expected in warning) if expected else warning == ""
     if "corrected_forces" in report and warning:
         assert "quasi-steady" not in warning
+    if "quasi-steady" in warning:  # and it says what to do about it
+        assert "model.inertia = 'first-order' adds their first inertial correction" in warning

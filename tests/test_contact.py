@@ -31,7 +31,8 @@ from dynamics.contact.steady import (
 )
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
-from dynamics.simulation import PHASE_CODES, Initial, simulate
+from dynamics.simulation import Initial, simulate
+from dynamics.trajectory import PHASE_CODES
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8

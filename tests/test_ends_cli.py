@@ -13,6 +13,7 @@ which the solver meets to 1e-10 (tests/test_finite_length.py), times
 3 kappa^2/(2 zeta^2) for T_a per W_b.
 """
 
+import functools
 import json
 import math
 
@@ -21,12 +22,12 @@ import pytest
 
 from dynamics.app.cli import main
 from dynamics.apparatus import preset
-from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 from lubrication import Annulus, Fluid, Motion
 from lubrication import finite_length as fl
+from lubrication.registry import kernel_model
 from lubrication.reynolds2d import reynolds2d_forces
 
 A, B = 0.008, 0.01125
@@ -60,15 +61,15 @@ UNIT_MOTIONS = (("f_eps_per_eps_dot", Motion(eps_dot=1.0), 0), ("f_chi_per_w_a",
                 ("t_a_per_w_b", Motion(omega_b=1.0), 2))
 
 
-@pytest.mark.parametrize("make", [closed_form, stokes_exact], ids=["closed-form", "stokes-exact"])
+@pytest.mark.parametrize("model", ["closed-form", "stokes-exact"])
 @pytest.mark.parametrize("node", [(2, 6), (3, 6)], ids=["zeta=0.51,L/a=11.9", "zeta=0.24,L/a=5.6"])
-def test_open_ends_are_length_times_coefficient_times_factor(table, make, node):
+def test_open_ends_are_length_times_coefficient_times_factor(table, model, node):
     """Each of the five coefficients of the force model with open ends against L x (its infinite-length
     coefficient) x finite_length_factors, the (theta, z) solver called directly."""
     kappa, omk, length_over_a = _node(*node)
     annulus = Annulus(a=A, b=B, length=length_over_a * A, one_minus_kappa=omk)
     factors = fl.finite_length_factors(kappa, length_over_a)
-    open_ends, infinite = make(ends="open", length_over_a=length_over_a), make()
+    open_ends, infinite = kernel_model(model, ends="open", length_over_a=length_over_a), kernel_model(model)
     assert open_ends.name.endswith("/open-ends")
     for name, motion, index in UNIT_MOTIONS:
         got = open_ends.forces(annulus, motion, FLUID).as_tuple()[index]
@@ -80,7 +81,7 @@ def test_open_ends_are_linear_in_the_velocities(table):
     """A combined motion is the sum of the unit ones (the factors multiply coefficients, not forces)."""
     _, omk, length_over_a = _node(3, 6)
     annulus = Annulus(a=A, b=B, length=length_over_a * A, one_minus_kappa=omk)
-    model = stokes_exact(ends="open", length_over_a=length_over_a)
+    model = kernel_model("stokes-exact", ends="open", length_over_a=length_over_a)
     combined = np.array(model.forces(annulus, Motion(eps_dot=-2e-5, chi_dot=0.3, omega_a=1.2, omega_b=-0.4),
                                      FLUID).as_tuple())
     parts = sum(np.array(model.forces(annulus, m, FLUID).as_tuple()) for m in
@@ -101,7 +102,7 @@ NO_REYNOLDS_LIMIT = 'run.max_gap_reynolds="none"'  # the comparison is of the fo
 
 def test_scene_with_open_ends_runs_the_finite_length_model(table, tmp_path, capsys):
     """`snail run --set model.ends="open"` on the default scene (steel, closed forms): the run is the
-    simulation with closed_form(ends="open", L/a) to the integrator's determinism, and not the infinite one."""
+    simulation with kernel_model("closed-form", ends="open", L/a) to the integrator's determinism, and not the infinite one."""
     code, out, _ = run(capsys, "run", "-o", str(tmp_path / "open"), "--t-end", "0.3", "--no-plot", "--json",
                        "--set", 'model.ends="open"', "--set", NO_REYNOLDS_LIMIT)
     assert code == 0
@@ -110,8 +111,8 @@ def test_scene_with_open_ends_runs_the_finite_length_model(table, tmp_path, caps
     ap = preset("steel", nu=2e-4, alpha=math.radians(2.4))
     limits = Limits(max_gap_reynolds=None)
     direct = {ends: simulate(ap, Initial(kappa=0.5, phi=0.5), 0.3, limits=limits, rtol=1e-8,
-                             forces=closed_form(ends, length_over_a=ap.length / ap.a) if ends == "open"
-                             else closed_form()) for ends in ("open", "infinite")}
+                             forces=kernel_model("closed-form", ends, length_over_a=ap.length / ap.a) if ends == "open"
+                             else kernel_model("closed-form")) for ends in ("open", "infinite")}
     x_b = summary["final"]["x_b"]
     assert x_b == pytest.approx(float(direct["open"].columns["x_b"][-1]), rel=1e-12)
     assert abs(x_b / float(direct["infinite"].columns["x_b"][-1]) - 1.0) > 1e-3
@@ -131,8 +132,9 @@ def _forces(capsys, *args):
     return code, (json.loads(out) if code == 0 and "--json" in args else out), err
 
 
-@pytest.mark.parametrize(("model", "make"), [("closed-form", closed_form), ("stokes-exact", stokes_exact)])
-def test_forces_applies_open_ends_to_the_factor_models(table, capsys, model, make):
+@pytest.mark.parametrize("model", ["closed-form", "stokes-exact"])
+def test_forces_applies_open_ends_to_the_factor_models(table, capsys, model):
+    make = functools.partial(kernel_model, model)
     code, data, _ = _forces(capsys, "--model", model, "--ends", "open", "--json")
     assert code == 0 and data["ends"] == "open"
     annulus = Annulus.from_kappa(A, B, 0.6, 0.1035)

@@ -24,7 +24,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
-from dynamics.engine import (
+from numerics.engine import (
     END,
     EVENT,
     INTERRUPTED,
@@ -43,9 +43,9 @@ from dynamics.engine import (
     no_events,
     radau,
 )
-from dynamics.engine.borrow import borrow
-from dynamics.engine.state import STATUS
-from lubrication._jit import jit
+from numerics.engine.borrow import borrow
+from numerics.engine.state import STATUS
+from numerics.jit import jit
 
 EPS = np.finfo(float).eps
 NO_ARGS = np.zeros(1)
@@ -625,8 +625,8 @@ def test_non_finite_at_the_start(fun, jac):
 
 _ZERO_DIVISION = """
 import numpy as np
-from dynamics.engine import integrate
-from lubrication._jit import jit
+from numerics.engine import integrate
+from numerics.jit import jit
 
 @jit
 def divides(t, y, args):
@@ -739,7 +739,7 @@ def test_borrowed_views_write_to_the_arrays_they_come_from():
 _FREES = """
 import json, numpy as np
 from numba.core.runtime import rtsys
-from dynamics.engine import integrate
+from numerics.engine import integrate
 from test_engine import MU, vdp, vdp_jac, vdp_events
 options = dict(args=MU, rtol=1e-6, atol=1e-6, events=vdp_events, chunk_steps=100, t_eval=np.linspace(0, 2000, 301))
 integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], **options)  # compiled and warm

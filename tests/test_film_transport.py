@@ -17,12 +17,12 @@ import pytest
 from scipy.integrate import quad
 
 from dynamics.apparatus import preset
-from dynamics.equations.film import mass_balance, rock, simulate_film
+from dynamics.equations.film import mass_balance, rock
+from dynamics.simulation import simulate
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.simulation import simulate
 from lubrication import Annulus, Fluid, Motion
-from lubrication import _film_kernels as fk
+from lubrication import film_kernels as fk
 from lubrication.cavitation import cavitating_forces, cavitating_pressure
 from lubrication.closed_form import closed_form_forces
 from lubrication.film_transport import (
@@ -320,7 +320,7 @@ def test_the_coupled_release_conserves_the_film_liquid():
     """The steel apparatus released at kappa = 0.5, phi = 0.5: it swings, cavitates, and no liquid is lost."""
     apparatus = preset("steel", nu=2e-4, alpha=math.radians(2.4))
     film = TransportedFilm(n=16, p_cav=P_ATM - 3.0, gauge=Feed(P_ATM))
-    run = simulate_film(apparatus, Initial(kappa=0.5, phi=0.5), 0.3, film, limits=Limits(on_invalid="warn"))
+    run = simulate(apparatus, Initial(kappa=0.5, phi=0.5), 0.3, forces=film, limits=Limits(on_invalid="warn"))
     assert run.status == "completed"
     c = run.columns
     assert np.count_nonzero(np.diff(np.sign(c["kappa_dot"][1:])) != 0) >= 2  # it rocks
@@ -336,7 +336,7 @@ def test_a_film_that_cannot_cavitate_moves_the_apparatus_as_the_closed_forms_do(
     initial = Initial(kappa=0.5, phi=0.5, omega_a=1.0, omega_b=-0.5)
     t = np.linspace(0.0, 0.3, 31)
     film = TransportedFilm(n=16, p_cav=-UNREACHABLE, gauge=Feed(P_ATM))
-    run = simulate_film(apparatus, initial, 0.3, film, t_eval=t, rtol=1e-10, limits=Limits(on_invalid="warn"))
+    run = simulate(apparatus, initial, 0.3, forces=film, t_eval=t, rtol=1e-10, limits=Limits(on_invalid="warn"))
     reference = simulate(apparatus, initial, 0.3, forces="closed-form", t_eval=t, rtol=1e-10,
                          limits=Limits(on_invalid="warn"))
     assert np.max(np.abs(run.columns["cavity_area"])) < 1e-18 * 2 * np.pi * A * DELTA  # rounding
@@ -451,10 +451,12 @@ def test_bad_states_and_runs_are_refused():
     with pytest.raises(ValueError, match=r"void0 must have shape \(16,\) and lie in \[0, V_j\]"):
         rock(annulus, FLUID, film, **rocking, void0=-area)
     apparatus = preset("steel")
-    with pytest.raises(TypeError, match="film must be a TransportedFilm"):
-        simulate_film(apparatus, Initial(kappa=0.5), 1.0, "jfo")
+    with pytest.raises(ValueError, match="model must be one of .*got 'jfo'"):
+        simulate(apparatus, Initial(kappa=0.5), 1.0, forces="jfo")
     with pytest.raises(ValueError, match="t_end must be"):
-        simulate_film(apparatus, Initial(kappa=0.5), -1.0, film)
+        simulate(apparatus, Initial(kappa=0.5), -1.0, forces=film)
+    with pytest.raises(ValueError, match="transported film .* full equations without contact"):
+        simulate(apparatus, Initial(kappa=0.5), 1.0, forces=film, equations="reduced")
     with pytest.raises(ValueError, match="end_conductance"):
         leaky_half_sommerfeld_forces(annulus, Motion(), FLUID, eps_end=-1.0)
 
@@ -466,7 +468,7 @@ def test_bad_states_and_runs_are_refused():
 def test_the_coupled_model_conserves_the_film_liquid_over_seconds(gauge):
     apparatus = preset("steel", nu=2e-4, alpha=math.radians(2.4))
     film = TransportedFilm(n=32, p_cav=P_ATM - 3.0, gauge=gauge)
-    run = simulate_film(apparatus, Initial(kappa=0.5, phi=0.5), 5.0, film, limits=Limits(on_invalid="warn"))
+    run = simulate(apparatus, Initial(kappa=0.5, phi=0.5), 5.0, forces=film, limits=Limits(on_invalid="warn"))
     assert run.status == "completed"
     assert mass_balance(apparatus, run).residual < 1e-10
 

@@ -8,8 +8,8 @@ import pytest
 from dynamics.apparatus import Apparatus, preset
 from dynamics.contact.full import steady_full_contact
 from dynamics.contact.steady import steady_state
-from dynamics.equations.forces import closed_form
 from lubrication import finite_length as fl
+from lubrication.registry import kernel_model
 from validation import finite_length_trajectories as flt
 
 S, KAPPA_STAR = 0.25, 0.98
@@ -20,7 +20,7 @@ def _relative_gap(delta_over_a: float) -> float:
     ap = Apparatus.from_groups(s=S, upsilon=1.0, mu_ratio=1.5, delta_over_a=delta_over_a)
     reduced = steady_state(S, KAPPA_STAR, 0.5)  # psi = 0.5: locked (figure 8)
     assert reduced.phase == "locked"
-    return flt.locked_speed(ap, closed_form(), KAPPA_STAR) / (ap.b * reduced.omega_b / ap.tau) - 1.0
+    return flt.locked_speed(ap, kernel_model("closed-form"), KAPPA_STAR) / (ap.b * reduced.omega_b / ap.tau) - 1.0
 
 
 def test_locked_speed_tends_to_section_5():

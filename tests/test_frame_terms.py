@@ -32,7 +32,7 @@ import pytest
 
 from dynamics.apparatus import preset
 from dynamics.equations import full
-from dynamics.equations.forces import force_model
+from lubrication.registry import kernel_model
 
 
 def _state(ap, kappa, chi, eps_dot, chi_dot, omega_a, omega_b):
@@ -48,8 +48,9 @@ def _state(ap, kappa, chi, eps_dot, chi_dot, omega_a, omega_b):
 
 def _fluid_force(ap, frame_terms, y):
     """The fluid force (F_x, F_z) on A (N) in the right-hand side at state y, with alpha = 0."""
-    args = full.run_args(ap, force_model("stokes-exact"), gap_floor=1e-9, frame_terms=frame_terms)
-    dy = full.rhs(0.0, y, args)
+    model = kernel_model("stokes-exact")
+    args = full.run_args(ap, model, gap_floor=1e-9, frame_terms=frame_terms)
+    dy = full.model_functions(model).rhs(0.0, y, args)
     return np.array([ap.m_eff * dy[2] + ap.m_a_reduced * ap.b * dy[5], ap.m_eff * dy[3]])
 
 
@@ -59,9 +60,10 @@ def _frame_force(ap, y):
 
 
 def _eps_ddot(ap, frame_terms, omega, kappa=0.5):
-    args = full.run_args(ap, force_model("stokes-exact"), gap_floor=1e-9, frame_terms=frame_terms)
+    model = kernel_model("stokes-exact")
+    args = full.run_args(ap, model, gap_floor=1e-9, frame_terms=frame_terms)
     y = _state(ap, kappa, 0.0, 0.0, omega, omega, omega)
-    dy = full.rhs(0.0, y, args)
+    dy = full.model_functions(model).rhs(0.0, y, args)
     return dy[3] + kappa * ap.delta * omega**2  # e_eps . r'' + eps chi'^2 at chi = 0
 
 

@@ -7,10 +7,10 @@ import pytest
 
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import full
-from dynamics.equations.forces import closed_form, reynolds
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.simulation import Initial, simulate
+from lubrication.registry import kernel_model
 from validation.dynamics_checks import inertial_time
 
 RTOL = 1e-10
@@ -38,7 +38,7 @@ def test_approaches_the_reduced_model_at_first_order_in_delta_over_a():
     for r in ratios:
         apparatus = Apparatus.from_groups(s, upsilon, mu, r)
         # the comparison is of the equations: the inertial guard, a statement about the fluid, is lifted
-        run = simulate(apparatus, Initial(0.3, 0.5), 10.0 * apparatus.tau, forces=closed_form(), rtol=RTOL,
+        run = simulate(apparatus, Initial(0.3, 0.5), 10.0 * apparatus.tau, forces=kernel_model("closed-form"), rtol=RTOL,
                        limits=Limits(max_gap_reynolds=None))
         assert run.status == "completed"
         got = _on_grid(run, names, t_tau)
@@ -59,14 +59,14 @@ def test_reynolds_forces_give_the_closed_form_trajectory():
         run = simulate(apparatus, Initial(0.5, 0.5), t_end, forces=model, rtol=rtol)
         return np.array([np.interp(t, run.columns["t"], run.columns[k]) for k in ("kappa", "phi", "x_b")])
 
-    closed = sample(closed_form(), RTOL)
-    integration_error = np.max(np.abs(closed - sample(closed_form(), RTOL / 100)), axis=1)
-    swap = np.max(np.abs(closed - sample(reynolds(n=16), RTOL)), axis=1)
+    closed = sample(kernel_model("closed-form"), RTOL)
+    integration_error = np.max(np.abs(closed - sample(kernel_model("closed-form"), RTOL / 100)), axis=1)
+    swap = np.max(np.abs(closed - sample(kernel_model("reynolds", n=16), RTOL)), axis=1)
     assert np.all(swap <= 3 * integration_error + 1e-14)
 
 
 def _sedimentation_deviation(apparatus, kappa0, t_from_tau=0.0):
-    run = simulate(apparatus, Initial(kappa0, math.pi), 8 * apparatus.tau, forces=closed_form(), rtol=RTOL)
+    run = simulate(apparatus, Initial(kappa0, math.pi), 8 * apparatus.tau, forces=kernel_model("closed-form"), rtol=RTOL)
     t = run.columns["t_tau"]
     big_t = t + kappa0 / math.sqrt(1 - kappa0**2)
     late = t >= t_from_tau
@@ -91,7 +91,7 @@ def test_steel_apparatus_on_a_level_plane_sediments_as_3_3_after_its_inertial_ti
 
 def test_starts_exactly_at_the_centre():
     apparatus = preset("steel")
-    run = simulate(apparatus, Initial(0.0, 0.0), 10.0, forces=closed_form())
+    run = simulate(apparatus, Initial(0.0, 0.0), 10.0, forces=kernel_model("closed-form"))
     assert run.status == "completed" and run.equations == "full"
     for values in run.columns.values():
         assert np.all(np.isfinite(values))
@@ -104,7 +104,7 @@ def test_close_approach_to_contact_keeps_the_gap_precision():
     On a level plane the gap closes as 1 - kappa ~ 1/(2 T^2) (3.3), with no rocking to resolve.
     """
     apparatus = preset("steel", alpha=0.0)
-    run = simulate(apparatus, Initial(0.99, math.pi), 1e5 * apparatus.tau, forces=closed_form(),
+    run = simulate(apparatus, Initial(0.99, math.pi), 1e5 * apparatus.tau, forces=kernel_model("closed-form"),
                    limits=Limits(gap_floor=1e-10))
     omk = run.columns["one_minus_kappa"]
     assert run.status == "stopped" and run.event == "gap_floor"
@@ -130,13 +130,13 @@ def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
     """
     apparatus = preset("aluminium", alpha=math.radians(12.0))
     assert apparatus.s > 1  # no rocking state exists: it must run away
-    run = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=closed_form(),
+    run = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=kernel_model("closed-form"),
                    limits=Limits(max_turns=10, max_gap_reynolds=None))
     assert run.status == "stopped" and run.event == "runaway" and run.rows[-1] == "event:runaway+end"
     assert "turned max_turns = 10 times" in run.message
     assert run.columns["x_b"][-1] == pytest.approx(20.0 * math.pi * apparatus.b, rel=1e-12)
     assert run.columns["omega_b"][-1] * apparatus.tau > 10.0
-    guarded = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=closed_form(),
+    guarded = simulate(apparatus, Initial(0.5, 0.5), 100.0, forces=kernel_model("closed-form"),
                        limits=Limits(max_gap_reynolds=1.0))
     assert guarded.status == "stopped" and guarded.event == "reynolds"
     assert "Reynolds number Re* reached max_gap_reynolds = 1 at" in guarded.message
@@ -147,12 +147,14 @@ def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
 def test_rhs_is_regular_through_the_centre():
     """The right-hand side is continuous at eps = 0 for any direction of approach."""
     apparatus = preset("steel")
-    args = full.run_args(apparatus, closed_form(), gap_floor=1e-9)
+    model = kernel_model("closed-form")
+    args = full.run_args(apparatus, model, gap_floor=1e-9)
+    rhs = full.model_functions(model).rhs
     v = np.array([1e-4, -2e-4])
-    at_centre = full.rhs(0.0, np.array([0.0, 0.0, *v, 0.3, 0.2, 0.0]), args)
+    at_centre = rhs(0.0, np.array([0.0, 0.0, *v, 0.3, 0.2, 0.0]), args)
     for angle in np.linspace(0, 2 * math.pi, 7):
         tiny = 1e-9 * np.array([math.sin(angle), math.cos(angle)])
-        near = full.rhs(0.0, np.array([*tiny, *v, 0.3, 0.2, 0.0]), args)
+        near = rhs(0.0, np.array([*tiny, *v, 0.3, 0.2, 0.0]), args)
         np.testing.assert_allclose(near[2:], at_centre[2:], rtol=1e-6, atol=1e-9 * np.abs(at_centre).max())
 
 
@@ -174,11 +176,13 @@ def test_jacobian_is_the_derivative_of_the_right_hand_side(polar, kappa):
     steps 1e-3 of each variable's scale (truncation O(h^4) ~ 1e-12, rounding ~ 1e-13/h ~ 1e-10 relative):
     the X_b column, which the Jacobian does not evaluate, must come out zero here too."""
     apparatus = preset("steel")
-    args = full.run_args(apparatus, closed_form(), gap_floor=1e-9)
+    model = kernel_model("closed-form")
+    args = full.run_args(apparatus, model, gap_floor=1e-9)
+    functions = full.model_functions(model)
     y = full.initial_state(apparatus, kappa, 0.4, 0.01, 0.02, 0.1, 0.05)
-    fun, jacobian = full.rhs, full.jacobian
+    fun, jacobian = functions.rhs, functions.jacobian
     if polar:
-        y, fun, jacobian = full.to_polar(apparatus, y), full.polar_rhs, full.polar_jacobian
+        y, fun, jacobian = full.to_polar(apparatus, y), functions.polar_rhs, functions.polar_jacobian
     steps = 1e-3 * np.maximum(np.abs(y), args[2])
     reference = _richardson_columns(fun, y, args, steps)
     jac = jacobian(0.0, y, args)
@@ -194,7 +198,9 @@ def test_polar_velocity_carries_the_same_motion(rng, one_minus_kappa):
     relative here; at 1 - kappa = 1e-9 the difference itself loses the digits); to_cartesian undoes to_polar
     to rounding."""
     apparatus = preset("steel")
-    args = full.run_args(apparatus, closed_form(), gap_floor=1e-12)
+    model = kernel_model("closed-form")
+    args = full.run_args(apparatus, model, gap_floor=1e-12)
+    functions = full.model_functions(model)
     kappa = 1.0 - one_minus_kappa
     for _ in range(5):
         phi, kappa_dot, phi_dot, omega_a, omega_b = rng.uniform(-3.0, 3.0, 5)
@@ -202,8 +208,8 @@ def test_polar_velocity_carries_the_same_motion(rng, one_minus_kappa):
                                omega_b, one_minus_kappa=one_minus_kappa)
         polar = full.to_polar(apparatus, y)
         np.testing.assert_allclose(full.to_cartesian(apparatus, polar), y, rtol=1e-13, atol=1e-300)
-        flow = full.rhs(0.0, y, args)
+        flow = functions.rhs(0.0, y, args)
         h = 1e-6 * one_minus_kappa * apparatus.tau
         along = (full.to_polar(apparatus, y + h * flow) - full.to_polar(apparatus, y - h * flow)) / (2.0 * h)
-        np.testing.assert_allclose(full.polar_rhs(0.0, polar, args), along, rtol=1e-6,
+        np.testing.assert_allclose(functions.polar_rhs(0.0, polar, args), along, rtol=1e-6,
                                    atol=1e-9 * np.max(np.abs(along)))

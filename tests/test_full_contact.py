@@ -12,10 +12,10 @@ from dynamics.contact import reduced as contact
 from dynamics.contact import steady as contact_steady
 from dynamics.contact.reduced import ContactParams
 from dynamics.equations import full
-from dynamics.equations.forces import closed_form
 from dynamics.simulation import Initial, simulate
+from lubrication.registry import kernel_model
 
-FORCES = closed_form()
+FORCES = kernel_model("closed-form")
 MODEL = full.model_arguments(FORCES)
 
 
@@ -52,12 +52,12 @@ def test_contact_forces_do_the_work_of_friction_only(locked):
             omega_a = ((ap.a + eps) * omega_b - eps * chi_dot) / ap.a
         y = np.array([chi, chi_dot, omega_a, omega_b, 0.0])
         sigma = math.copysign(1.0, full_contact.slip(ap, surfaces.kappa_star, y))
-        rates = full_contact.contact_rates(y, p, surfaces.kappa_star, surfaces.one_minus_kappa_star, locked,
+        rates = full_contact.contact_functions(FORCES).rates(y, p, surfaces.kappa_star, surfaces.one_minus_kappa_star, locked,
                                            sigma, full_contact.friction_coefficient(ap, surfaces), MODEL)
         e_eps, e_chi = np.array([math.sin(chi), math.cos(chi)]), np.array([math.cos(chi), -math.sin(chi)])
         r, r_dot = eps * e_eps, eps * chi_dot * e_chi
         r_ddot = eps * (rates[0] * e_chi - chi_dot**2 * e_eps)
-        free = full.rhs(0.0, full_contact._free_state(ap, surfaces, y), free_args)
+        free = full.model_functions(FORCES).rhs(0.0, full_contact._free_state(ap, surfaces, y), free_args)
         in_contact = energy_rate(ap, *r, r_dot, r_ddot, omega_a, omega_b, rates[1], rates[2])
         without = energy_rate(ap, *r, r_dot, free[2:4], omega_a, omega_b, free[4], free[5])
         friction_power = rates[4] * full_contact.slip(ap, surfaces.kappa_star, y)

@@ -16,7 +16,6 @@ import pytest
 
 from dynamics.apparatus import preset
 from dynamics.equations import full
-from dynamics.equations.forces import closed_form, force_model, reynolds, stokes_exact
 from lubrication.geometry import Annulus, Fluid, Motion
 from lubrication.inertia import (
     CORRECTED_MEASURED_TO,
@@ -27,6 +26,7 @@ from lubrication.inertia import (
     inertial_error_estimate,
     inertial_force_correction,
 )
+from lubrication.registry import kernel_model
 
 APPARATUS_GAP = 0.325 / 0.8
 
@@ -50,10 +50,10 @@ def _sweep_forces(d, kappa, w_a, w_b, reduced, mesh=(144, 6)):
     rows = []
     for re, navier_stokes in zip(sweep.reynolds[1:], sweep.inner[1:, :2]):
         fluid = Fluid(nu=d / re, rho=re / d)
-        plain = stokes_exact().forces(annulus, motion, fluid)
-        corrected = stokes_exact(inertia=True, rho=fluid.rho).forces(annulus, motion, fluid)
-        scale = (abs(stokes_exact().forces(annulus, Motion(omega_a=motion.omega_a), fluid).f_chi)
-                 + abs(stokes_exact().forces(annulus, Motion(omega_b=motion.omega_b), fluid).f_chi))
+        plain = kernel_model("stokes-exact").forces(annulus, motion, fluid)
+        corrected = kernel_model("stokes-exact", inertia="first-order", rho=fluid.rho).forces(annulus, motion, fluid)
+        scale = (abs(kernel_model("stokes-exact").forces(annulus, Motion(omega_a=motion.omega_a), fluid).f_chi)
+                 + abs(kernel_model("stokes-exact").forces(annulus, Motion(omega_b=motion.omega_b), fluid).f_chi))
         first_order = inertial_error_estimate(kappa, d, motion.omega_a * re, motion.omega_b * (1.0 + d) * re)
         rows.append(SimpleNamespace(
             reduced=re * d, navier_stokes=navier_stokes, plain=np.array([plain.f_eps, plain.f_chi]),
@@ -96,8 +96,8 @@ def test_corrected_forces_leave_a_second_order_error():
     left, inertial = [], []
     for re, force in zip(sweep.reynolds[1:], sweep.inner[1:, :2]):
         fluid = Fluid(nu=d / re, rho=re / d)
-        first = (stokes_exact(inertia=True, rho=fluid.rho).forces(annulus, motion, fluid).f_eps
-                 - stokes_exact().forces(annulus, motion, fluid).f_eps)
+        first = (kernel_model("stokes-exact", inertia="first-order", rho=fluid.rho).forces(annulus, motion, fluid).f_eps
+                 - kernel_model("stokes-exact").forces(annulus, motion, fluid).f_eps)
         inertial.append(force - sweep.inner[0, :2])
         left.append(np.linalg.norm(inertial[-1] - [first, 0.0]))
     ratio = math.log(sweep.reynolds[2] / sweep.reynolds[1])
@@ -136,14 +136,14 @@ def test_corrected_error_estimate_against_the_stored_newton_sweeps():
     assert CORRECTED_MEASURED_TO == max(row["max_reduced_reynolds"] for row in study["sweeps"])
 
 
-@pytest.mark.parametrize("make", [closed_form, stokes_exact])
-def test_correction_is_the_tabulated_first_order_force(make):
+@pytest.mark.parametrize("model", ["closed-form", "stokes-exact"])
+def test_correction_is_the_tabulated_first_order_force(model):
     """The compiled evaluation adds exactly the Python evaluation of the first inertial correction."""
     annulus = Annulus.from_kappa(0.008, 0.01125, 0.63, length=0.1)
     fluid = Fluid(nu=2e-4, rho=960.0)
     motion = Motion(eps_dot=1e-3, chi_dot=4.0, omega_a=6.0, omega_b=1.5)
-    plain = make().forces(annulus, motion, fluid)
-    corrected = make(inertia=True, rho=fluid.rho).forces(annulus, motion, fluid)
+    plain = kernel_model(model).forces(annulus, motion, fluid)
+    corrected = kernel_model(model, inertia="first-order", rho=fluid.rho).forces(annulus, motion, fluid)
     expected = inertial_force_correction(annulus, motion, fluid).f_eps
     assert corrected.f_eps - plain.f_eps == pytest.approx(expected, rel=1e-12)
     assert (corrected.f_chi, corrected.T_a) == (plain.f_chi, plain.T_a)
@@ -164,8 +164,9 @@ def test_correction_inside_the_compiled_right_hand_side():
     v = eps_dot * e_eps + kappa * ap.delta * chi_dot * e_chi
     y = np.array([u[0], u[1], v[0], v[1], omega_a, omega_b, 0.0])
     rates = {}
-    for name, model in (("plain", stokes_exact()), ("corrected", stokes_exact(inertia=True, rho=ap.rho))):
-        rates[name] = full.rhs(0.0, y, full.run_args(ap, model, gap_floor=1e-9))
+    for name, model in (("plain", kernel_model("stokes-exact")),
+                        ("corrected", kernel_model("stokes-exact", inertia="first-order", rho=ap.rho))):
+        rates[name] = full.model_functions(model).rhs(0.0, y, full.run_args(ap, model, gap_floor=1e-9))
     change = rates["corrected"] - rates["plain"]
     force = np.array([ap.m_eff * change[2] + ap.m_a_reduced * ap.b * change[5], ap.m_eff * change[3]])
     annulus = Annulus.from_kappa(ap.a, ap.b, kappa, length=ap.length)
@@ -176,8 +177,8 @@ def test_correction_inside_the_compiled_right_hand_side():
 
 def test_every_model_has_one_numba_type():
     """The compiled engine is compiled once per args type: every force model's data must type alike."""
-    models = [closed_form(), stokes_exact(), reynolds(), reynolds(cavitation="jfo"),
-              stokes_exact(inertia=True, rho=950.0), closed_form(inertia=True, rho=950.0)]
+    models = [kernel_model("closed-form"), kernel_model("stokes-exact"), kernel_model("reynolds"), kernel_model("reynolds", cavitation="jfo"),
+              kernel_model("stokes-exact", inertia="first-order", rho=950.0), kernel_model("closed-form", inertia="first-order", rho=950.0)]
     types = {str(numba.typeof(m.data)) for m in models}
     assert len(types) == 1
 
@@ -189,8 +190,8 @@ def test_a_run_with_the_corrected_forces():
 
     ap = preset("aluminium", alpha=math.radians(5.0))
     limits = Limits(max_gap_reynolds=None)
-    plain = simulate(ap, Initial(0.5, 0.5), 0.2, forces=stokes_exact(), limits=limits)
-    corrected = simulate(ap, Initial(0.5, 0.5), 0.2, forces=stokes_exact(inertia=True, rho=ap.rho), limits=limits)
+    plain = simulate(ap, Initial(0.5, 0.5), 0.2, forces=kernel_model("stokes-exact"), limits=limits)
+    corrected = simulate(ap, Initial(0.5, 0.5), 0.2, forces=kernel_model("stokes-exact", inertia="first-order", rho=ap.rho), limits=limits)
     assert corrected.status == "completed" and corrected.forces == "stokes-exact+inertia"
     # the first 0.2 s pass Re* = 2.4 (estimated error 15%): the trajectories part, but not by much
     assert corrected.columns["x_b"][-1] != plain.columns["x_b"][-1]
@@ -198,11 +199,11 @@ def test_a_run_with_the_corrected_forces():
 
 
 @pytest.mark.parametrize(("call", "match"), [
-    (lambda: stokes_exact(inertia=True), "rho"),
-    (lambda: stokes_exact(inertia=True, rho=-1.0), "rho must be in"),
-    (lambda: closed_form(inertia="yes", rho=950.0), "inertia must be True or False"),
-    (lambda: stokes_exact(ends="open", length_over_a=12.9, inertia=True, rho=950.0), "ends = 'infinite'"),
-    (lambda: force_model("reynolds", inertia=True, rho=950.0), "inertia = True is available with")])
+    (lambda: kernel_model("stokes-exact", inertia="first-order"), "rho"),
+    (lambda: kernel_model("stokes-exact", inertia="first-order", rho=-1.0), "rho must be in"),
+    (lambda: kernel_model("closed-form", inertia="yes", rho=950.0), "inertia must be True or False"),
+    (lambda: kernel_model("stokes-exact", ends="open", length_over_a=12.9, inertia="first-order", rho=950.0), "ends = 'infinite'"),
+    (lambda: kernel_model("reynolds", inertia="first-order", rho=950.0), "inertia = True is available with")])
 def test_bad_inertia_options_are_refused(call, match):
     with pytest.raises(ValueError, match=match):
         call()

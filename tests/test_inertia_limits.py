@@ -102,13 +102,13 @@ def test_report_gives_the_error_at_the_worst_reynolds_number_and_the_worst_error
     w1 = 2.0 / (per * ap.a)  # Re* = 2 from the inner wall
     w2 = 1.0 / (per * ap.a)  # Re* = 1
     # the second state's outer wall cancels the Stokes f_chi at first order: R_a W_a + R_b W_b = 0
-    from dynamics.equations.forces import stokes_exact
     from lubrication.geometry import Annulus, Fluid, Motion
+    from lubrication.registry import kernel_model
 
     annulus = Annulus.from_kappa(ap.a, ap.b, 0.2, length=ap.length)
     fluid = Fluid(nu=ap.nu, rho=ap.rho)
-    r_a = stokes_exact().forces(annulus, Motion(omega_a=1.0), fluid).f_chi
-    r_b = stokes_exact().forces(annulus, Motion(omega_b=1.0), fluid).f_chi
+    r_a = kernel_model("stokes-exact").forces(annulus, Motion(omega_a=1.0), fluid).f_chi
+    r_b = kernel_model("stokes-exact").forces(annulus, Motion(omega_b=1.0), fluid).f_chi
     w2_b = -r_a * w2 / r_b
     columns = _columns(ap, [0.1, 0.7], [0.9, 0.2], 10.0, [10.0 + w1, 10.0 + w2], [10.0 + w1, 10.0 + w2_b])
     report = inertia_report(ap, columns)
@@ -143,11 +143,13 @@ def test_report_of_corrected_forces_gives_what_the_correction_leaves():
 
 def test_a_corrected_run_stopped_at_the_reynolds_limit_quotes_what_its_forces_leave():
     """simulate() with the inertia-corrected forces: the stop message and the report speak of those forces."""
+
     from dynamics import Initial, simulate
-    from dynamics.equations.forces import stokes_exact
+    from lubrication.registry import kernel_model
 
     ap = preset("aluminium", alpha=math.radians(5.0))
-    for forces, corrected in ((stokes_exact(), False), (stokes_exact(inertia=True, rho=ap.rho), True)):
+    for forces, corrected in ((kernel_model("stokes-exact"), False),
+                              (kernel_model("stokes-exact", inertia="first-order", rho=ap.rho), True)):
         run = simulate(ap, Initial(0.5, 0.5), 0.2, forces=forces, limits=Limits(on_invalid="stop"))
         assert run.status == "stopped" and run.event == "reynolds"
         assert ("first inertial correction" in run.message) is corrected

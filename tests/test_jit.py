@@ -1,4 +1,5 @@
-"""lubrication._jit: specialised copies of a template, and a disk cache keyed on every source of the packages."""
+"""numerics.jit: specialised copies of a template, and a disk cache keyed on the sources of each package and of
+the packages below it."""
 
 import os
 import shutil
@@ -9,8 +10,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lubrication import _jit
-from lubrication._jit import jit, project_stamp, sources_hash, sources_stamp, specialise
+from numerics import jit as _jit
+from numerics.jit import (
+    jit,
+    package_stamp,
+    sources_hash,
+    sources_stamp,
+    specialise,
+    stamped_roots,
+)
 
 
 @jit
@@ -58,13 +66,17 @@ def test_the_sources_hash_follows_every_byte(tmp_path):
 
 
 def test_the_equations_are_filed_under_the_kernels_sources():
-    """Compiled with a force kernel from another file, the equations' copies carry that file's hash in their name."""
+    """Compiled with a force kernel from another package, the equations' copies carry its name and the hash of
+    its sources in theirs."""
     from dynamics.contact import full as contact
-    from dynamics.equations import forces, full
+    from dynamics.equations import full
+    from lubrication.registry import kernel_model
 
-    copies = [*full.model_functions(forces.CLOSED), full.rhs, full.jacobian, contact.contact_rhs,
-              *contact.contact_functions(forces.EXACT)]
-    assert all(c.py_func.__qualname__.endswith(forces.KERNELS_HASH) for c in copies)
+    for name in ("closed-form", "stokes-exact", "reynolds"):
+        model = kernel_model(name)
+        copies = [*full.model_functions(model), *contact.contact_functions(model)]
+        assert all(c.py_func.__qualname__.endswith(model.kernel_name) for c in copies)
+        assert model.kernel_name.startswith(name.replace("-", "_") + "_")
 
 
 def test_the_stamp_follows_every_source_and_only_sources(tmp_path):
@@ -83,15 +95,25 @@ def test_the_stamp_follows_every_source_and_only_sources(tmp_path):
     assert sources_stamp(package) != edited
 
 
-def test_the_project_kernels_are_keyed_on_the_project_stamp():
+def test_each_package_keys_its_kernels_on_its_sources_and_those_below_it():
     from dynamics.equations import reduced
+    from lubrication import closed_form
+    from numerics.engine import driver
 
     assert _jit.LOCATORS_INSTALLED
-    assert reduced.rhs._cache._impl.locator.get_source_stamp() == project_stamp()
-    assert _double._cache._impl.locator.get_source_stamp() != project_stamp()  # a test module's: numba's own
+    names = {package: [Path(root).name for root in stamped_roots(package)]
+             for package in ("numerics", "lubrication", "dynamics")}
+    assert names == {"numerics": ["numerics"], "lubrication": ["lubrication", "numerics"],
+                     "dynamics": ["dynamics", "lubrication", "numerics"]}
+    assert reduced.rhs._cache._impl.locator.get_source_stamp() == package_stamp("dynamics")
+    lubrication_kernel = closed_form.closed_form_resistance
+    assert lubrication_kernel._cache._impl.locator.get_source_stamp() == package_stamp("lubrication")
+    assert driver.no_events._cache._impl.locator.get_source_stamp() == package_stamp("numerics")
+    assert len({package_stamp(p) for p in names}) == 3
+    assert _double._cache._impl.locator.get_source_stamp() not in {package_stamp(p) for p in names}  # numba's own
 
 
-_CALLEE = """from lubrication._jit import jit
+_CALLEE = """from numerics.jit import jit
 
 SCALE = {scale}
 
@@ -100,7 +122,7 @@ SCALE = {scale}
 def callee(x):
     return SCALE * x
 """
-_CALLER = """from lubrication._jit import jit
+_CALLER = """from numerics.jit import jit
 from lubrication._probe_callee import callee
 
 
@@ -116,7 +138,7 @@ print(caller(3.0), sum(caller.stats.cache_hits.values()))
 def test_an_edit_to_a_called_module_recompiles_its_caller(tmp_path):
     """numba alone would load the caller's cached code, with the callee as it was compiled then."""
     root = Path(_jit.__file__).resolve().parents[1]
-    for name in _jit.PACKAGES:
+    for name in ("numerics", "lubrication", "dynamics"):
         shutil.copytree(root / name, tmp_path / name, ignore=shutil.ignore_patterns("__pycache__"))
     (tmp_path / "lubrication" / "_probe_caller.py").write_text(_CALLER)
     env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}

@@ -23,7 +23,6 @@ from lubrication.inertia import (  # noqa: E402
     reduced_reynolds,
     relative_reynolds,
     small_eccentricity_forces,
-    table_row,
     thin_gap_small_kappa,
 )
 from lubrication.navier_stokes import (  # noqa: E402
@@ -31,6 +30,7 @@ from lubrication.navier_stokes import (  # noqa: E402
     first_inertial_correction,
     inertial_sweep,
     navier_stokes_forces,
+    table_row,
 )
 from lubrication.stokes import stokes_resistance  # noqa: E402
 
@@ -418,7 +418,7 @@ def test_error_estimate_at_a_node_is_the_direct_computation():
     direct = _direct_estimate(c, re_a, re_b)
     assert inertial_error_estimate(kappa, d, re_a, re_b) == pytest.approx(direct, rel=1e-10)
     # the normalised row is what the table stores at that node
-    from lubrication._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
+    from lubrication.inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
     i, j = list(KAPPA_NODES).index(kappa), list(DELTA_NODES).index(d)
     np.testing.assert_allclose(table_row(c), TABLE[i, j], rtol=1e-10)
 

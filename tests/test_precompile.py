@@ -13,9 +13,9 @@ import numba
 import pytest
 
 from dynamics.app.precompile import SCENES
-from dynamics.equations.forces import CLOSED, KIND_NAMES
 from dynamics.scenes import load_scene
-from lubrication._jit import PACKAGES, sources_stamp
+from lubrication.registry import kernel_model
+from numerics.jit import sources_stamp, stamped_roots
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -40,13 +40,15 @@ def test_the_wheel_ships_caches_numba_accepts_for_its_own_sources(tmp_path):
     with zipfile.ZipFile(next(tmp_path.glob("*.whl"))) as wheel:
         wheel.extractall(unpacked)
         indexes = [PurePosixPath(n) for n in wheel.namelist() if n.endswith(".nbi")]
-        # the engine's driver and the full model's right-hand side with the closed forms, compiled for the
+        # the engine's driver and the full model's right-hand side with the exact Stokes forces, compiled for the
         # default scene and filed under the hash of the kernels' sources as shipped
-        for kernel in ("driver.advance", f"full._rhs_{KIND_NAMES[CLOSED]}-"):
+        for kernel in ("driver.advance", f"full._rhs_{kernel_model('stokes-exact').kernel_name}-"):
             assert any(i.name.startswith(kernel) for i in indexes), kernel
         # numba loads an index only if its stamp is the one its locator computes: the installed packages' sources
-        shipped = sources_stamp(*(unpacked / name for name in PACKAGES))
+        # (each package's kernels are keyed on its sources and those of the packages below it)
+        shipped = {package: sources_stamp(*(unpacked / Path(root).name for root in stamped_roots(package)))
+                   for package in ("numerics", "lubrication", "dynamics")}
         for index in indexes:
             version, stamp = _index_stamp(wheel.read(str(index)))
             assert version == numba.__version__
-            assert stamp == shipped, index
+            assert stamp == shipped[index.parts[0]], index

@@ -1,6 +1,6 @@
 """The numerical Reynolds solver: closed forms, convergence, identities, symmetries, bad input.
 
-Expected accuracy (see lubrication._kernels): on the Sommerfeld grid every
+Expected accuracy (see lubrication.reynolds_kernels): on the Sommerfeld grid every
 thin-gap integrand is a trigonometric polynomial in psi, so forces are exact up
 to rounding once N m exceeds its degree; tolerances are rounding level times the
 coefficient's condition number (validation.lubrication_checks.condition). On
@@ -24,7 +24,7 @@ from lubrication import (
     reynolds_forces,
     reynolds_pressure,
 )
-from lubrication.reynolds import _psi_rule
+from lubrication.reynolds import psi_rule
 from validation import lubrication_checks as checks
 
 A, B, L = 0.008, 0.01125, 0.1035
@@ -122,7 +122,7 @@ def test_pressure_formula_is_an_antiderivative_of_the_reynolds_flux():
 @pytest.mark.parametrize("kappa", [0.0, 0.5, 0.99])
 def test_quadrature_reproduces_integrals_b8_b9(n, kappa):
     """oint (1 - kappa cos)^-k with the solver's own rule on its own grid, k = 1, 2, 3."""
-    (cpsi, spsi, vpsi, ppsi, w), _ = _psi_rule(n, 1)
+    (cpsi, spsi, vpsi, ppsi, w), _ = psi_rule(n, 1)
     zeta = math.sqrt(1 - kappa**2)
     d = 1 + kappa * cpsi
     jac, big_h = zeta / d, zeta**2 / d  # dtheta/dpsi and 1 - kappa cos(theta) on the Sommerfeld grid

@@ -25,9 +25,8 @@ from lubrication import (
     closed_form_forces,
     reynolds_forces,
 )
-from lubrication._kernels import THIN, film_forces
 from lubrication.finite_length import short_bearing_forces, small_eccentricity_factor
-from lubrication.reynolds import _psi_rule, _theta_of_psi
+from lubrication.reynolds import _theta_of_psi, psi_rule
 from lubrication.reynolds2d import (
     NARROW_SCALE,
     GapProfile2D,
@@ -41,6 +40,7 @@ from lubrication.reynolds2d import (
     reynolds2d_pressure,
     tilted_gap,
 )
+from lubrication.reynolds_kernels import THIN, film_forces
 
 A, B, L = 0.008, 0.01125, 0.1035  # the apparatus, m
 FLUID = Fluid(nu=2e-4, rho=960.0)
@@ -198,7 +198,7 @@ def test_sealed_ends_on_the_clustered_grid_are_the_one_dimensional_scheme(kappa,
     """On any theta grid the sealed solution is that grid's one-dimensional solution."""
     annulus = Annulus.from_kappa(A, B, kappa, L)
     kappa_g, omk_g = grid_parameter(kappa, annulus.one_minus_kappa, 0.5)
-    rule, _ = _psi_rule(64, 2)
+    rule, _ = psi_rule(64, 2)
     empty = np.empty(0)
     ref = np.array(film_forces(THIN, A, B, FLUID.mu, L, kappa, annulus.one_minus_kappa, motion.eps_dot,
                                motion.w_a, motion.w_b, kappa_g, omk_g, *rule, 2, empty, empty, 1.0, 0.0, empty))

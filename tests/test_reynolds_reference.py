@@ -1,6 +1,6 @@
 r"""The exact-gap Reynolds model against an independent solution of the same equation.
 
-The model (lubrication._kernels, profile "eccentric"): along the ray from the
+The model (lubrication.reynolds_kernels, profile "eccentric"): along the ray from the
 inner centre A at angle theta from the narrowest point, the outer circle lies at
 
     r(theta) = sqrt(b^2 - eps^2 sin^2 theta) - eps cos theta,   h = r - a,
@@ -35,7 +35,7 @@ import pytest
 from scipy.integrate import quad
 
 from lubrication import Annulus, Fluid, Motion, reynolds_forces
-from lubrication._kernels import eccentric_gap
+from lubrication.reynolds_kernels import eccentric_gap
 
 # quad warns when rounding stops it short of 1e-13 on integrands that vanish by symmetry;
 # the comparisons, at 1e-10, are what decide

@@ -38,7 +38,8 @@ from dynamics.equations import reduced
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
-from dynamics.simulation import PHASE_CODES, simulate
+from dynamics.simulation import simulate
+from dynamics.trajectory import PHASE_CODES
 from validation.rough_speeds import (
     rolling_statistics,
     speed_table,

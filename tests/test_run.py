@@ -9,9 +9,9 @@ import pytest
 
 from dynamics.app.cli import main
 from dynamics.app.output import CSV_COLUMNS
-from dynamics.engine import INTERRUPTED, NON_FINITE
-from dynamics.integrate import METHODS, integrate
-from lubrication._jit import jit
+from numerics.engine import INTERRUPTED, NON_FINITE
+from numerics.integrate import METHODS, integrate
+from numerics.jit import jit
 
 SHORT = ["--t-end", "2 s"]
 

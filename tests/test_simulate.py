@@ -9,7 +9,7 @@ one at 1 - kappa0 = 1e-9 (below it only the gap floor 1e-12) and the full model'
 stick-slip contact (psi = 0.13, just above the onset of sliding 0.1286).
 
 Every problem is integrated by the compiled engine ("radau") and by scipy's Radau at
-rtol = 1e-12 through the same driver (:func:`dynamics.integrate.integrate`), the
+rtol = 1e-12 through the same driver (:func:`numerics.integrate.integrate`), the
 reference. Errors are counted in tolerance units, as in scipy's own tests:
 
     e = |y - y_ref| / (atol + rtol |y_ref|),
@@ -41,9 +41,9 @@ from dynamics.contact.reduced import ContactParams
 from dynamics.contact.steady import onset_of_sliding
 from dynamics.equations.limits import MIN_GAP_FLOOR_FULL, Limits
 from dynamics.equations.reduced import ReducedParams
-from dynamics.integrate import METHODS
 from dynamics.scenes import load_scene
 from dynamics.simulation import Initial, simulate
+from numerics.integrate import METHODS
 from validation.contact_checks import KAPPA_STAR, RELEASE
 from validation.dynamics_checks import FIG2, FIG3
 from validation.full_contact_checks import STICK_SLIP_PSI, device

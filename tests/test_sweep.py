@@ -13,7 +13,7 @@ from dynamics.app.sweeps.point import classify_point, run_point
 from dynamics.app.sweeps.run import run_sweep
 from dynamics.app.sweeps.spec import SweepError, load_sweep, parse_sweep, point_key
 from dynamics.app.sweeps.store import NUMBERS, Table, read_rows
-from dynamics.simulation import Trajectory
+from dynamics.trajectory import Trajectory
 
 # mu_ = 1 and Upsilon = 1 as in the paper's figures 2 (s = 1/4 rocks) and 3 (s = 0.9 runs away).
 BASE = """

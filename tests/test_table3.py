@@ -9,7 +9,7 @@ import pytest
 from dynamics.apparatus import Apparatus
 from dynamics.contact.full import friction_coefficient
 from dynamics.contact.reduced import ContactParams
-from dynamics.equations.forces import closed_form, stokes_exact
+from lubrication.registry import kernel_model
 from validation import table3
 from validation.checks import comparisons
 
@@ -45,7 +45,7 @@ def test_forward_then_inverse_recovers_sigma_with_the_full_model(sigma, phase):
     Newton leaves the rates within 1e-12, brentq sigma within 1e-13; over the
     elasticity d ln V/d ln sigma >= 0.5 that is about 2e-12.
     """
-    forces = stokes_exact()
+    forces = kernel_model("stokes-exact")
     assert table3.full_steady_state(STEEL, forces, sigma).phase == phase
     speed = partial(table3.full_speed, STEEL, forces)
     found = table3.infer_sigma(speed, speed(sigma), 0.5 * sigma, table3.sigma_bounds(STEEL))
@@ -66,7 +66,7 @@ def test_full_model_tends_to_the_reduced_inverse_at_first_order_in_delta_over_a(
         ap = Apparatus.from_groups(s=0.25, upsilon=1.0, mu_ratio=1.5, delta_over_a=ratio)
         sigma = 0.1 * ap.delta
         v = table3.reduced_speed(ap, sigma, psi=0.5)  # psi = 0.5 locks both models
-        for name, forces in (("closed-form", closed_form()), ("stokes-exact", stokes_exact())):
+        for name, forces in (("closed-form", kernel_model("closed-form")), ("stokes-exact", kernel_model("stokes-exact"))):
             found = table3.infer_sigma(partial(table3.full_speed, ap, forces, psi=0.5), v, sigma,
                                        table3.sigma_bounds(ap))
             errors[name].append(abs(found / sigma - 1.0))
@@ -81,7 +81,7 @@ def test_locked_speed_is_proportional_to_sin_alpha_and_sliding_breaks_it():
 
     Sliding, the friction bound tan(psi_hat) N brings in cos(phi): the ratio moves.
     """
-    forces = stokes_exact()
+    forces = kernel_model("stokes-exact")
 
     def per_sin(slope, sigma):
         ap = table3.the_apparatus(slope)
@@ -98,7 +98,7 @@ def test_locked_speed_is_proportional_to_sin_alpha_and_sliding_breaks_it():
 
 def test_sliding_state_sits_on_the_friction_cone_against_its_slip():
     """Sliding: |F| = tan(psi_hat) N, F opposing the slip a Omega_a - (a + eps*) Omega_b; locked: inside the cone."""
-    forces = stokes_exact()
+    forces = kernel_model("stokes-exact")
     contact = ContactParams(1.0 - 1.6e-3 / STEEL.delta, table3.PSI_EXPERIMENT)
     mu_f = friction_coefficient(STEEL, contact)
     slide = table3.full_steady_state(STEEL, forces, 1.6e-3)
@@ -147,7 +147,7 @@ def test_bad_input_names_the_parameter(kwargs, match):
 
 @pytest.mark.parametrize("sigma", [0.0, -1e-4, STEEL.delta, math.inf])
 def test_bad_sigma_for_the_models(sigma):
-    for speed in (table3.paper_speed, table3.reduced_speed, partial(table3.full_speed, forces=stokes_exact())):
+    for speed in (table3.paper_speed, table3.reduced_speed, partial(table3.full_speed, forces=kernel_model("stokes-exact"))):
         with pytest.raises(ValueError, match="sigma must be"):
             speed(STEEL, sigma=sigma)
 

@@ -63,13 +63,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynamics.apparatus import preset
-from dynamics.equations.forces import reynolds
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.simulation import Trajectory
+from dynamics.trajectory import Trajectory
 from dynamics.simulation import simulate as run_trajectory
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import CAVITATION_MODELS, cavitating_pressure
+from lubrication.registry import kernel_model
 
 from .checks import Finding, absolute, at_least, at_most
 
@@ -148,7 +148,7 @@ def simulate(slope_deg: float, model: str, pressure_drop: float, t_end: float, n
              output_interval: float | None = None) -> Trajectory:
     """The steel apparatus on ``slope_deg`` with ``model`` at p_ref - p_cav = ``pressure_drop`` (Pa)."""
     apparatus = preset("steel", nu=NU, alpha=math.radians(slope_deg))
-    forces = reynolds(n=n, cavitation=model, p_cav=P_REF - pressure_drop, p_ref=P_REF)
+    forces = kernel_model("reynolds", n=n, cavitation=model, p_cav=P_REF - pressure_drop, p_ref=P_REF)
     return run_trajectory(apparatus, INITIAL, t_end, forces=forces, rtol=RTOL, limits=LIMITS,
                           output_interval=output_interval)
 
@@ -233,7 +233,7 @@ def figure(path, runs: list[Run]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     full = {r.slope_deg: r.late_speed for r in runs if r.model == "none"}
     slopes = sorted(full)

@@ -11,7 +11,7 @@ bubbles in it) is integrated three ways:
 
 * ``old``: the quasi-static JFO force law (:func:`dynamics.equations.forces.reynolds`);
 * ``feed``: the transported film of :mod:`lubrication.film_transport` (the void of
-  each of the N cells in the state, :func:`dynamics.equations.film.simulate_film`)
+  each of the N cells in the state, :func:`dynamics.simulation.simulate` with the film as its forces)
   with the same feed: only the film's memory differs from ``old``;
 * ``bubble``: the transported film whose reference pressure is set by the end
   reservoirs and their trapped bubble (1 cm^3 of gas at 1 atm): the gauge and
@@ -50,13 +50,13 @@ from pathlib import Path
 import numpy as np
 
 from dynamics.apparatus import preset
-from dynamics.equations.film import mass_balance, simulate_film
-from dynamics.equations.forces import reynolds
+from dynamics.equations.film import mass_balance
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.simulation import Trajectory
+from dynamics.trajectory import Trajectory
 from dynamics.simulation import simulate as run_trajectory
 from lubrication.film_transport import Bubble, Feed, TransportedFilm
+from lubrication.registry import kernel_model
 
 from .checks import Finding, at_most, relative
 
@@ -95,11 +95,11 @@ def simulate(slope_deg: float, model: str, t_end: float, n: int = N_CELLS,
     """The steel apparatus on ``slope_deg`` released from :data:`INITIAL`, the film as ``model`` (:data:`MODELS`)."""
     apparatus = preset("steel", nu=NU, alpha=math.radians(slope_deg))
     if model == "old":
-        forces = reynolds(n=n, points_per_cell=POINTS_PER_CELL, cavitation="jfo", p_cav=P_REF - PRESSURE_DROP,
-                          p_ref=P_REF)
+        forces = kernel_model("reynolds", n=n, points_per_cell=POINTS_PER_CELL, cavitation="jfo",
+                              p_cav=P_REF - PRESSURE_DROP, p_ref=P_REF)
         return run_trajectory(apparatus, INITIAL, t_end, forces=forces, rtol=RTOL, limits=LIMITS)
-    return simulate_film(apparatus, INITIAL, t_end, transported_film(model, n, relaxation), rtol=RTOL,
-                         limits=LIMITS, max_steps=max_steps)
+    return run_trajectory(apparatus, INITIAL, t_end, forces=transported_film(model, n, relaxation), rtol=RTOL,
+                          limits=LIMITS, max_steps=max_steps)
 
 
 @dataclass(frozen=True)
@@ -170,7 +170,7 @@ def figure(path, runs: list[Run]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     slopes = sorted({r.slope_deg for r in runs})
     fig, axes = plt.subplots(1, len(slopes), figsize=(5.5 * len(slopes), 4.2), squeeze=False)
@@ -301,7 +301,7 @@ def main(argv=None) -> int:
     import json
     import sys
 
-    from lubrication.files import write_json, write_text
+    from numerics.files import write_json, write_text
 
     from .checks import Check
 

@@ -61,7 +61,7 @@ def _return_freed_blocks_to_the_system() -> None:
 
 def _validate(args) -> int:
     _return_freed_blocks_to_the_system()
-    from dynamics.app.folder import writable_folder
+    from numerics.folder import writable_folder
 
     from .suite import run_all
 
@@ -78,7 +78,7 @@ def _validate(args) -> int:
 
 def _corrections(args) -> int:
     """Run the study, write CSV, JSON and figure into ``args.output``."""
-    from dynamics.app.folder import writable_folder
+    from numerics.folder import writable_folder
 
     from .checks import Check
     from .corrections import run

@@ -65,8 +65,9 @@ from dynamics.contact.steady import (
 )
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
-from dynamics.simulation import PHASE_CODES, Trajectory, simulate
-from lubrication.files import save_figure
+from dynamics.simulation import simulate
+from dynamics.trajectory import PHASE_CODES, Trajectory
+from numerics.files import save_figure
 
 from .checks import Check, Finding, absolute, at_most, relative
 

@@ -276,7 +276,7 @@ def figure(result: dict, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fine = np.linspace(0.0, 0.999, 300)
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
@@ -323,7 +323,7 @@ def _paragraph(result: dict) -> str:
 
 def run(outdir, quick: bool = False):
     """The study as a validation group: (checks, figure names, paragraph); writes CSV and JSON too."""
-    from lubrication.files import write_json, write_text
+    from numerics.files import write_json, write_text
 
     outdir = Path(outdir)
     result = study(quick=quick)

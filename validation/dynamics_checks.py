@@ -91,7 +91,6 @@ import numpy as np
 from scipy.special import ellipe
 
 from dynamics.apparatus import Apparatus, preset
-from dynamics.equations.forces import closed_form
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
     ReducedParams,
@@ -110,7 +109,9 @@ from dynamics.equations.special import (
 )
 from dynamics.initial import Initial
 from dynamics.regime import classify
-from dynamics.simulation import Trajectory, simulate
+from dynamics.simulation import simulate
+from dynamics.trajectory import Trajectory
+from lubrication.registry import kernel_model
 
 from .checks import Check, Finding, absolute, at_least, at_most, relative
 
@@ -365,7 +366,7 @@ def distinguished_limit(ratios=RATIOS) -> dict:
     for ratio in ratios:
         apparatus = Apparatus.from_groups(s, ups, mu, ratio)
         # a limit of the equations: the inertial guard, a statement about the fluid, is lifted
-        run = simulate(apparatus, LIMIT_START, LIMIT_WINDOW * apparatus.tau, forces=closed_form(), rtol=LIMIT_RTOL,
+        run = simulate(apparatus, LIMIT_START, LIMIT_WINDOW * apparatus.tau, forces=kernel_model("closed-form"), rtol=LIMIT_RTOL,
                        limits=Limits(max_gap_reynolds=None))
         got = _scaled(run, t_tau)
         for k in SPIN_PLANE:
@@ -391,7 +392,7 @@ def level_plane(ratios=(0.03, 0.01, 0.003), kappa0: float = 0.3) -> list[dict]:
     out = []
     apparatuses = [(f"delta/a={r:g}", Apparatus.from_groups(0.0, 1.0, 2.0, r)) for r in ratios]
     for name, apparatus in [*apparatuses, ("steel preset", preset("steel", alpha=0.0))]:
-        run = simulate(apparatus, Initial(kappa0, math.pi), 8 * apparatus.tau, forces=closed_form(), rtol=1e-10)
+        run = simulate(apparatus, Initial(kappa0, math.pi), 8 * apparatus.tau, forces=kernel_model("closed-form"), rtol=1e-10)
         t_i = inertial_time(apparatus)
         c = run.columns
         kappa_ref, omk_ref = sedimentation(c["t_tau"], kappa0)
@@ -422,7 +423,7 @@ def level_plane_checks(runs: list[dict], kappa0: float = 0.3) -> list[Check]:
 def full_runaway(alpha_deg: float, t_end: float, start=Initial(0.5, 0.5)) -> dict:
     """The aluminium apparatus rolling away on a slope: fitted acceleration and film losses, late half."""
     apparatus = preset("aluminium", alpha=math.radians(alpha_deg))
-    run = simulate(apparatus, start, t_end, forces=closed_form(), method=RUNAWAY_METHOD,
+    run = simulate(apparatus, start, t_end, forces=kernel_model("closed-form"), method=RUNAWAY_METHOD,
                    limits=Limits(max_gap_reynolds=RUNAWAY_REYNOLDS, max_turns=RUNAWAY_TURNS))
     c = run.columns
     t, x_b = c["t"], c["x_b"]
@@ -479,7 +480,7 @@ def regime_map(alpha_deg: float, kappas, phis, equations: str = "full", t_end: f
     out = np.empty((len(kappas), len(phis)), dtype=int)
     for i, kappa0 in enumerate(kappas):
         for j, phi0 in enumerate(phis):
-            run = simulate(apparatus, Initial(kappa0, phi0), t_end, equations=equations, forces=closed_form(),
+            run = simulate(apparatus, Initial(kappa0, phi0), t_end, equations=equations, forces=kernel_model("closed-form"),
                            limits=Limits(max_gap_reynolds=None, max_turns=20.0))
             out[i, j] = code[classify(run)[0]]
     return out
@@ -525,7 +526,7 @@ def extremes(quick: bool) -> list[Check]:
             cases.append((f"s={s:g}, Upsilon={ups:g}, {t_tau:.3g} tau", apparatus, t_tau * apparatus.tau))
     checks = []
     for name, apparatus, t_end in cases:
-        run = simulate(apparatus, Initial(0.0, 0.0), t_end, forces=closed_form())
+        run = simulate(apparatus, Initial(0.0, 0.0), t_end, forces=kernel_model("closed-form"))
         bad = sum(int(np.count_nonzero(~np.isfinite(v))) for v in run.columns.values())
         clear = run.status == "completed" or (run.status == "stopped" and run.event in ("gap_floor", "reynolds", "runaway"))
         checks.append(absolute(f"full model from kappa0 = 0, {name}: non-finite values", bad, 0.0, 0.0,
@@ -562,7 +563,7 @@ def _path_panel(ax, kappa, phi, star=None):
 def figure2(path, traj: Trajectory) -> None:
     """Panels of figure 2 with the multiple-scale laws (3.9) dashed."""
     plt = _plt()
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     c = traj.columns
     s = FIG2.s
@@ -608,7 +609,7 @@ def figure2(path, traj: Trajectory) -> None:
 def figure3(path, traj: Trajectory) -> None:
     """Panels of figure 3 with the runaway (3.11) dashed."""
     plt = _plt()
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     c = traj.columns
     rate = runaway_spin_rate(FIG3.s, FIG3.upsilon, FIG3.mu_ratio)
@@ -641,7 +642,7 @@ def figure3(path, traj: Trajectory) -> None:
 
 def limit_figure(path, limit: dict, level: list[dict]) -> None:
     plt = _plt()
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
     r = np.array(limit["ratios"])
@@ -668,7 +669,7 @@ def limit_figure(path, limit: dict, level: list[dict]) -> None:
 def runaway_figure(path, runs: list[dict]) -> None:
     """Acceleration per turn of the line of centres (same phase: the periodic parts cancel)."""
     plt = _plt()
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, axes = plt.subplots(1, len(runs), figsize=(5.5 * len(runs), 4.2), squeeze=False)
     for ax, r in zip(axes[0], runs):
@@ -702,7 +703,7 @@ def regime_figure(path, maps: dict, kappas, phis) -> None:
     plt = _plt()
     from matplotlib.colors import ListedColormap
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, axes = plt.subplots(1, len(maps), figsize=(4.2 * len(maps), 3.8), squeeze=False)
     cmap = ListedColormap(["0.6", "C0", "C3"])  # transient, rocking, runaway

@@ -278,7 +278,7 @@ def table(outcomes) -> str:
 
 
 def main() -> None:
-    from lubrication.files import write_text
+    from numerics.files import write_text
 
     write_text(Path(__file__).resolve().parents[1] / "docs" / "faults.md", table([run_case(c) for c in CASES]))
 

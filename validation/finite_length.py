@@ -33,10 +33,10 @@ import time
 from pathlib import Path
 
 from lubrication import Annulus, Fluid, Motion, closed_form_forces
-from lubrication.files import write_json, write_text
 from lubrication.finite_length import FACTOR_NAMES, finite_length_factors
 from lubrication.stokes import stokes_resistance
 from lubrication.stokes3d import stokes3d_resistance
+from numerics.files import write_json, write_text
 
 __all__ = ["KAPPAS", "LENGTH", "MESHES", "A", "B", "compare", "run", "to_markdown"]
 

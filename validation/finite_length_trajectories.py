@@ -70,15 +70,17 @@ from pathlib import Path
 
 import numpy as np
 
-from dynamics.regime import classify
 from dynamics.apparatus import Apparatus, preset
 from dynamics.contact.full import steady_full_contact
 from dynamics.contact.reduced import LOCKED, ContactParams
-from dynamics.equations.forces import ForceModel, closed_form, stokes_exact
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.simulation import Trajectory, simulate
+from dynamics.regime import classify
+from dynamics.simulation import simulate
+from dynamics.trajectory import Trajectory
 from lubrication.geometry import Annulus, Fluid, Motion
+from lubrication.kernels import KernelModel
+from lubrication.registry import kernel_model
 
 from .checks import Check, Finding, absolute, at_most
 from .contact_checks import PSI_EXPERIMENT, SANDPAPER
@@ -100,11 +102,10 @@ RTOL_ROUGH = 1e-9
 STEADY_TOLERANCE = 1e-6
 
 
-def _model(base: str, ends: str, apparatus: Apparatus) -> ForceModel:
-    make = closed_form if base == "closed-form" else stokes_exact
+def _model(base: str, ends: str, apparatus: Apparatus) -> KernelModel:
     if ends == "infinite":
-        return make()
-    return make(ends="open", length_over_a=apparatus.length / apparatus.a)
+        return kernel_model(base)
+    return kernel_model(base, ends="open", length_over_a=apparatus.length / apparatus.a)
 
 
 def contact_of(apparatus: Apparatus) -> ContactParams:
@@ -112,7 +113,7 @@ def contact_of(apparatus: Apparatus) -> ContactParams:
     return ContactParams(1.0 - SIGMA / apparatus.delta, PSI_EXPERIMENT)
 
 
-def locked_speed(apparatus: Apparatus, forces: ForceModel, kappa_star: float) -> float:
+def locked_speed(apparatus: Apparatus, forces: KernelModel, kappa_star: float) -> float:
     """Steady locked rolling speed V = M g b^2 sin(alpha)/(eps* D) of the module docstring (m/s)."""
     ap = apparatus
     eps_star = kappa_star * ap.delta
@@ -399,7 +400,7 @@ def figure(path, cases: list[Case]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     groups = sorted({(c.apparatus, c.nu) for c in cases})
@@ -448,7 +449,7 @@ def run(outdir, quick: bool = False):
 
 
 def main(argv=None) -> int:
-    from lubrication.files import write_json, write_text
+    from numerics.files import write_json, write_text
 
     from .checks import comparisons
 

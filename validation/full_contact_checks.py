@@ -37,11 +37,12 @@ from dynamics.apparatus import Apparatus, preset
 from dynamics.contact.full import steady_full_contact
 from dynamics.contact.reduced import LOCKED, ContactParams
 from dynamics.contact.steady import steady_state
-from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
-from dynamics.simulation import Trajectory, simulate
-from lubrication.files import save_figure
+from dynamics.simulation import simulate
+from dynamics.trajectory import Trajectory
+from lubrication.registry import kernel_model
+from numerics.files import save_figure
 
 from .checks import Check, absolute, at_least, at_most, relative
 from .contact_checks import (
@@ -82,7 +83,7 @@ def limit_errors(psi: float) -> list[float]:
     errors = []
     for ratio in RATIOS:
         ap = device(ratio)
-        chi, omega_a, omega_b = _steady(ap, closed_form(), ContactParams(KAPPA_STAR, psi), reduced)
+        chi, omega_a, omega_b = _steady(ap, kernel_model("closed-form"), ContactParams(KAPPA_STAR, psi), reduced)
         errors.append(max(abs(chi + ap.alpha - reduced.phi), abs(omega_a * ap.tau / reduced.omega_a - 1.0),
                           abs(omega_b * ap.tau / reduced.omega_b - 1.0)))
     return errors
@@ -90,7 +91,7 @@ def limit_errors(psi: float) -> list[float]:
 
 def release(psi: float, delta_over_a: float = RATIOS[0], t_end_tau: float = T_END_TAU) -> Trajectory:
     ap = device(delta_over_a)
-    return simulate(ap, RELEASE, t_end_tau * ap.tau, forces=closed_form(), contact=ContactParams(KAPPA_STAR, psi),
+    return simulate(ap, RELEASE, t_end_tau * ap.tau, forces=kernel_model("closed-form"), contact=ContactParams(KAPPA_STAR, psi),
                     rtol=RTOL)
 
 
@@ -98,7 +99,7 @@ def _release_error(trajectory: Trajectory, psi: float) -> float:
     """max |rate - fixed point| at the end, over the rate scale 3 zeta* s; chi error in rad."""
     ap = device(trajectory.groups["delta_over_a"])
     reduced = steady_state(S, KAPPA_STAR, psi)
-    chi, omega_a, omega_b = _steady(ap, closed_form(), ContactParams(KAPPA_STAR, psi),
+    chi, omega_a, omega_b = _steady(ap, kernel_model("closed-form"), ContactParams(KAPPA_STAR, psi),
                                     reduced)
     c = trajectory.columns
     scale = 3.0 * ContactParams(KAPPA_STAR, psi).zeta_star * S / ap.tau
@@ -113,9 +114,9 @@ def apparatus_speeds(quick: bool) -> dict:
     reduced = steady_state(ap.s, kappa_star, PSI_EXPERIMENT)
     out = {"delta_over_a": ap.delta_over_a, "kappa_star": kappa_star, "v_reduced": ap.b * reduced.omega_b / ap.tau,
            "phase_reduced": reduced.phase}
-    models = {"closed-form": closed_form()}
+    models = {"closed-form": kernel_model("closed-form")}
     if not quick:
-        models["stokes"] = stokes_exact()
+        models["stokes"] = kernel_model("stokes-exact")
     for name, forces in models.items():
         run = simulate(ap, Initial(kappa=kappa_star, phi=math.pi), 3000.0 * ap.tau, forces=forces, contact=rough,
                        rtol=1e-9)

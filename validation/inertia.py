@@ -15,7 +15,7 @@ the same sense; it cannot cancel when they do not), and of its torque, for
 W = Omega - chi' the wall rotations relative to the line of centres.
 
 * First order, every motion: the O(Re) correction (a pure f_eps) from the
-  reciprocal theorem, tabulated (:mod:`lubrication._inertia_table`) for
+  reciprocal theorem, tabulated (:mod:`lubrication.inertia_table`) for
   kappa in [0, 0.999] and delta/a in [0.01, 1]; its largest value per Re*
   over every direction of (W_a, W_b), which sets the run guard; its
   kappa -> 0 limit against the thin-gap closed form (the regime of DiPrima &
@@ -25,8 +25,8 @@ W = Omega - chi' the wall rotations relative to the line of centres.
   delta/a = 0.1 and the apparatus' 0.406 (Table 2) at kappa = 0.3, 0.6, 0.9
   for (i), (ii), (iv), and delta/a = 0.01 for (iv) at kappa = 0.3; where the
   error reaches 1% and 10%, how far the first-order error holds, and what the
-  inertia-corrected force model (:mod:`dynamics.equations.forces`,
-  ``inertia=True``) leaves.
+  inertia-corrected force model (:mod:`lubrication.registry`,
+  ``inertia="first-order"``) leaves.
 * (iii): in the frame of the line of centres the fictitious forces only
   shift the pressure, so the runaway is (W_a, W_b) plus the exact force
   -m''_a chi'^2 eps e_eps; checked with the fictitious forces discretised at
@@ -42,7 +42,7 @@ W = Omega - chi' the wall rotations relative to the line of centres.
 Run ``python -m validation.inertia`` to write ``docs/inertia/`` (figures,
 ``inertia.json``, ``inertia.md``; about nine minutes on two cores);
 ``python -m validation.inertia --table`` rebuilds
-:mod:`lubrication._inertia_table` (about two minutes).
+:mod:`lubrication.inertia_table` (about two minutes).
 """
 
 from __future__ import annotations
@@ -67,14 +67,14 @@ APPARATUS = {"a_m": 0.008, "b_m": 0.01125, "delta_over_a": 0.325 / 0.8}
 DELTAS = (0.01, 0.1, APPARATUS["delta_over_a"])
 KAPPAS = (0.3, 0.6, 0.9)
 
-#: Nodes of :mod:`lubrication._inertia_table`: dense near contact, where the
+#: Nodes of :mod:`lubrication.inertia_table`: dense near contact, where the
 #: normalised coefficients change fastest, and across the gaps of interest.
 TABLE_KAPPAS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999)
 TABLE_DELTAS = (0.01, 0.03, 0.1, 0.2, 0.3, APPARATUS["delta_over_a"], 0.6, 1.0)
 #: Off-node points where the interpolated table is compared with fresh solves.
 TABLE_PROBES = ((0.05, 0.05), (0.45, 0.15), (0.65, 0.35), (0.85, 0.5), (0.93, 0.8), (0.97, 0.25), (0.75, 0.02))
 
-_TABLE_MODULE = Path(__file__).resolve().parents[1] / "lubrication" / "_inertia_table.py"
+_TABLE_MODULE = Path(__file__).resolve().parents[1] / "lubrication" / "inertia_table.py"
 
 
 def _motions(kappa: float) -> dict[str, tuple[float, float]]:
@@ -90,8 +90,9 @@ def _format_array(values: np.ndarray) -> str:
 
 def build_table(path: str | Path = _TABLE_MODULE) -> Path:
     """Solve the first inertial correction on the table's nodes and write the table module."""
-    from lubrication.files import write_text
-    from lubrication.inertia import TABLE_COLUMNS, build_error_table
+    from lubrication.inertia import TABLE_COLUMNS
+    from lubrication.navier_stokes import build_error_table
+    from numerics.files import write_text
 
     start = time.perf_counter()
     table = build_error_table(TABLE_KAPPAS, TABLE_DELTAS)
@@ -165,8 +166,8 @@ def first_order_survey() -> dict:
     over every direction of (W_a, W_b) and every kappa, for each delta/a
     (``g_max``, with the kappa and the ratio U_b/U_a = W_b b / (W_a a) where it occurs).
     """
-    from lubrication._inertia_table import DELTA_NODES, KAPPA_NODES
     from lubrication.inertia import inertial_error_estimate
+    from lubrication.inertia_table import DELTA_NODES, KAPPA_NODES
 
     out = {"kappa": [float(k) for k in KAPPA_NODES], "delta_over_a": [float(d) for d in DELTA_NODES]}
     for name in ("inner", "outer", "rolling", "co-rotating"):
@@ -411,14 +412,14 @@ def runaway_trajectories() -> list[dict]:
     """
     from dynamics import Initial, simulate
     from dynamics.apparatus import preset
-    from dynamics.equations.forces import closed_form
     from dynamics.equations.limits import Limits
+    from lubrication.registry import kernel_model
 
     out = []
     for deg in RUNAWAY_SLOPES:
         ap = preset("aluminium", alpha=math.radians(deg))
         for label, frame_terms, inertia in RUNAWAY_MODELS:
-            model = closed_form(inertia=inertia, rho=ap.rho if inertia else None)
+            model = kernel_model("closed-form", inertia="first-order" if inertia else "none", rho=ap.rho)
             run = simulate(ap, Initial(0.5, 0.5), RUNAWAY_T_END, forces=model, frame_terms=frame_terms,
                            limits=Limits(on_invalid="warn", max_turns=1000.0), output_interval=RUNAWAY_OUTPUT)
             c = run.columns
@@ -510,7 +511,7 @@ def checks_of(result: dict) -> list[Check]:
         worst = max(e for row in result["sweeps"] for e, r in zip(row["corrected_error"], row["reduced_reynolds"])
                     if r <= level + 1e-9)
         checks.append(at_most(f"inertia-corrected forces against Newton for Re* <= {level:g}, every sweep", worst,
-                              cap, "|F - F_Stokes - F^(1)| / |F_Stokes|: what stokes_exact(inertia=True) leaves"))
+                              cap, "|F - F_Stokes - F^(1)| / |F_Stokes|: what the forces with inertia 'first-order' leave"))
     for run in result["runaway_trajectories"]:
         name = f"aluminium runaway at {run['slope_deg']:g} deg, {run['model']}"
         checks.append(at_least(f"{name}: followed past the Reynolds limit to t (s)", run["t_last"], RUNAWAY_T_END,
@@ -588,7 +589,7 @@ def figure(result: dict, path: str | Path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
     colours = {d: c for d, c in zip(DELTAS, ("tab:blue", "tab:orange", "tab:green"))}
@@ -647,7 +648,7 @@ def runaway_figure(result: dict, path: str | Path):
     import matplotlib.pyplot as plt
 
     from dynamics.equations.limits import MAX_REYNOLDS
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
     colours = dict(zip(RUNAWAY_SLOPES, ("tab:blue", "tab:orange")))
@@ -754,7 +755,7 @@ def _runaway_markdown(result: dict) -> list[str]:
               "closed forms, `on_invalid = \"warn\"` and the default Reynolds limit Re* = 1 (crossed, and "
               "recorded, in the first swing). Three treatments of the fluid's inertia: 'paper' ((2.1)-(2.2) as "
               "printed), 'quasi-steady' (with frame_terms), 'quasi-steady+inertia' (also the forces' first "
-              "inertial correction, `closed_form(inertia=True)`). Columns of the tables: Re*; the estimated "
+              "inertial correction, `model.inertia = 'first-order'`). Columns of the tables: Re*; the estimated "
               "relative force error (first order, against |f_chi,a| + |f_chi,b|); the first inertial "
               "correction and the frame force over m'_a g."), "",
              "![The aluminium runaway followed past the Reynolds limit](runaway.png)", ""]
@@ -880,8 +881,8 @@ def _markdown(result: dict) -> str:
                      f"{r['max_reduced_reynolds']:.3g} | {r['mesh'][0]} x {r['mesh'][1]} | {r['wall_time_s']:.1f} |")
     lines += ["", "![Force error against the Reynolds number; first-order G; torque error](inertia.png)", "",
               "## The inertia-corrected force model", "",
-              ("`closed_form(inertia=True, rho=...)` and `stokes_exact(inertia=True, rho=...)` "
-               "(dynamics.equations.forces) add the tabulated first inertial correction f_eps^(1) "
+              ("The closed forms and the exact Stokes forces with `inertia = 'first-order'` "
+               "(lubrication.registry) add the tabulated first inertial correction f_eps^(1) "
                "to the Stokes forces, inside the compiled right-hand side. Its error is what the Newton "
                "solutions leave after it, |F - F_Stokes - F^(1)| / |F_Stokes|, largest over the sweeps "
                "above (at the table's nodes; between them add the interpolation error, below 3% of the "
@@ -929,7 +930,7 @@ def _markdown(result: dict) -> str:
 
 def write_outputs(result: dict, outdir: str | Path) -> list[Path]:
     """Write inertia.json, inertia.md, inertia.png and runaway.png into ``outdir``."""
-    from lubrication.files import write_json, write_text
+    from numerics.files import write_json, write_text
 
     outdir = Path(outdir)
 

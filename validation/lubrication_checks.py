@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from lubrication import Annulus, Fluid, Motion, resistance, reynolds_pressure
-from lubrication.forces import Resistance
+from lubrication.geometry import Resistance
 
 from .checks import Check, absolute, relative
 
@@ -126,7 +126,7 @@ def convergence_figure(path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     ns = np.unique(np.geomspace(8, 4096, 14).astype(int))
     fig, ax = plt.subplots(figsize=(6.4, 4.2))

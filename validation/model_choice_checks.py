@@ -33,12 +33,11 @@ from pathlib import Path
 
 from dynamics.app.auto import choose_equations, choose_forces
 from dynamics.apparatus import Apparatus, preset
-from dynamics.equations import forces as forcemodels
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
-from lubrication.forces import Resistance, resistance
-from lubrication.geometry import Annulus, Fluid, Motion
+from lubrication.geometry import Annulus, Fluid, Motion, Resistance
+from lubrication.registry import kernel_model, resistance
 from lubrication.stokes import clear_cache, default_mesh
 
 from .checks import Check, absolute, at_least, at_most
@@ -63,7 +62,7 @@ def _row_error(got: Resistance, truth: Resistance) -> float:
 
 
 def _chosen_resistance(choice, annulus: Annulus) -> Resistance:
-    model = forcemodels.force_model(choice.model, **choice.options)
+    model = kernel_model(choice.model, **choice.options)
     unit = [model.forces(annulus, Motion(**{k: 1.0}), FLUID) for k in ("eps_dot", "omega_a", "omega_b")]
     return Resistance(unit[0].f_eps, unit[1].f_chi, unit[1].T_a, unit[2].f_chi, unit[2].T_a)
 
@@ -106,7 +105,7 @@ def equations_error(delta: float) -> float:
     # (the release's swing passes Re* = 1 at every delta/a of the study)
     lifted = Limits(max_gap_reynolds=None)
     reduced = simulate(app, release, T_END_TAU * app.tau, equations="reduced", rtol=1e-10, limits=lifted)
-    full = simulate(app, release, T_END_TAU * app.tau, forces=forcemodels.stokes_exact(), rtol=1e-10,
+    full = simulate(app, release, T_END_TAU * app.tau, forces=kernel_model("stokes-exact"), rtol=1e-10,
                     limits=lifted)
     r, f = reduced.columns, full.columns
     return max(abs(r["x_b"][-1] - f["x_b"][-1]) / abs(f["x_b"][-1]),

@@ -114,7 +114,7 @@ def _count(c: Check, word: str) -> str:
 
 
 def _phase(code: float) -> str:
-    from dynamics.simulation import PHASE_CODES
+    from dynamics.trajectory import PHASE_CODES
 
     names = {v: k for k, v in PHASE_CODES.items()}
     return names.get(int(code), f"code {code:g}") if math.isfinite(code) else "nan"

@@ -37,13 +37,14 @@ from pathlib import Path
 import numpy as np
 
 from dynamics.apparatus import preset
-from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.regime import classify
-from dynamics.simulation import Trajectory, simulate
+from dynamics.simulation import simulate
+from dynamics.trajectory import Trajectory
+from lubrication.registry import kernel_model
 
-from .checks import Check, Finding, absolute, at_least, at_most
+from .checks import Finding, absolute, at_least, at_most
 
 __all__ = ["APPARATUS_SLOPES_DEG", "OILS", "Pair", "figure", "pairs", "run", "simulate_pair", "table"]
 
@@ -136,7 +137,7 @@ def simulate_pair(name: str, nu: float, slope_deg: float, models: dict, t_end: f
 
 def pairs(cases) -> list[Pair]:
     """One :class:`Pair` per (apparatus, nu, slope) in ``cases``."""
-    models = {"closed-form": closed_form(), "stokes": stokes_exact()}
+    models = {"closed-form": kernel_model("closed-form"), "stokes": kernel_model("stokes-exact")}
     return [simulate_pair(name, nu, slope, models) for name, nu, slope in cases]
 
 
@@ -175,7 +176,7 @@ def figure(path, results: list[Pair]) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     groups = sorted({(p.apparatus, p.nu) for p in results})

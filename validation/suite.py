@@ -5,8 +5,8 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from lubrication.files import write_json, write_text
 from lubrication.stokes import clear_cache
+from numerics.files import write_json, write_text
 
 from . import (
     cavitation_checks,

@@ -25,11 +25,11 @@ steady rolling speed of the full model (2.1)-(2.4) with rough contact
 (:mod:`dynamics.contact.full`: a unilateral constraint at eps* = delta - sigma
 with Coulomb friction at the contact point) and with
 
-* the exact 2-D Stokes forces of circular walls (``stokes_exact()``), valid at
+* the exact 2-D Stokes forces of circular walls (``kernel_model("stokes-exact")``), valid at
   the apparatus' delta/a = 0.41 where (2.5)-(2.7) are only leading order, and
 * the same times the thin-gap finite-length factors of an annulus of length L
   whose gap opens into the oil-filled end regions
-  (``stokes_exact(ends="open", length_over_a=L/a)``, L/a = 12.9). That
+  (``kernel_model("stokes-exact", ends="open", length_over_a=L/a)``, L/a = 12.9). That
   product differs from a 3-D Stokes solve by up to 4.7% in f_chi, and in T_a
   by under 0.8% of the torque's larger coefficient, at kappa = 0.3-0.99
   (docs/finite_length/stokes3d.md).
@@ -80,20 +80,31 @@ import numpy as np
 from scipy.optimize import brentq
 
 from dynamics.apparatus import preset
-from dynamics.contact.full import _Run, contact_jacobian, contact_rates, friction_coefficient, steady_full_contact
+from dynamics.contact.full import (
+    _Run,
+    contact_functions,
+    friction_coefficient,
+    steady_full_contact,
+)
 from dynamics.contact.reduced import LOCKED, SLIDING, ContactParams
 from dynamics.contact.steady import steady_locked, steady_speed, steady_state
 from dynamics.equations import full
-from dynamics.equations.forces import closed_form, stokes_exact
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.simulation import PHASE_CODES, simulate
-from lubrication.files import save_figure, write_json, write_text
+from dynamics.simulation import simulate
+from dynamics.trajectory import PHASE_CODES
 from lubrication.finite_length import TABLE_VERSION
 from lubrication.geometry import check_finite, check_range
+from lubrication.registry import kernel_model
+from numerics.files import save_figure, write_json, write_text
 
 from .checks import Check, Finding, absolute, at_most, relative
-from .contact_checks import PSI_EXPERIMENT, SANDPAPER, SANDPAPER_OIL, SANDPAPER_SLOPE_DEG
+from .contact_checks import (
+    PSI_EXPERIMENT,
+    SANDPAPER,
+    SANDPAPER_OIL,
+    SANDPAPER_SLOPE_DEG,
+)
 
 __all__ = [
     "GRADES", "MODELS", "PARTICLE_SIZE", "FullSteady", "bracket_sigma", "compute", "force_models", "full_speed",
@@ -165,8 +176,8 @@ def the_apparatus(slope_deg: float = SANDPAPER_SLOPE_DEG):
 
 def force_models(apparatus) -> dict:
     """The two force models of the re-inference, keyed by :data:`MODELS`."""
-    return {MODELS[0]: stokes_exact(),
-            MODELS[1]: stokes_exact(ends="open", length_over_a=apparatus.length / apparatus.a)}
+    return {MODELS[0]: kernel_model("stokes-exact"),
+            MODELS[1]: kernel_model("stokes-exact", ends="open", length_over_a=apparatus.length / apparatus.a)}
 
 
 def sigma_bounds(apparatus) -> tuple[float, float]:
@@ -216,8 +227,8 @@ def full_steady_state(apparatus, forces, sigma: float, psi: float = PSI_EXPERIME
 
     def rates(x, locked, sigma_slip=0.0):
         y = np.array([x[0], 0.0, x[1], x[2]])
-        return contact_rates(y, p, contact.kappa_star, contact.one_minus_kappa_star, locked, sigma_slip, mu_f,
-                             model)
+        return contact_functions(forces).rates(y, p, contact.kappa_star, contact.one_minus_kappa_star, locked,
+                                               sigma_slip, mu_f, model)
 
     x = steady_full_contact(apparatus, forces, contact, True,
                             [reduced.phi - apparatus.alpha, reduced.omega_a / tau, reduced.omega_b / tau])
@@ -339,7 +350,7 @@ def _settling_rate(apparatus, forces, sigma: float, state: FullSteady, psi: floa
         apparatus.a + contact.kappa_star * apparatus.delta) * state.omega_b)
     args = _Run(apparatus, forces, contact, Limits(), TRAJECTORY_RTOL).contact_args(locked, sigma_slip)
     y = np.array([state.chi, 0.0, state.omega_a, state.omega_b, 0.0])
-    rates = np.linalg.eigvals(contact_jacobian(0.0, y, args)[:4, :4]) * apparatus.tau
+    rates = np.linalg.eigvals(contact_functions(forces).jacobian(0.0, y, args)[:4, :4]) * apparatus.tau
     return -float(np.max(rates.real[np.abs(rates) > 1e-6]))
 
 
@@ -414,8 +425,8 @@ def compute(quick: bool = False, psi: float = PSI_EXPERIMENT) -> dict:
     decomposition = {
         REDUCED: (partial(reduced_speed, ap, psi=psi),
                   lambda sigma: steady_state(ap.s, 1.0 - sigma / ap.delta, psi).phase),
-        CLOSED_FORMS: (partial(full_speed, ap, closed_form(), psi=psi),
-                       lambda sigma: full_steady_state(ap, closed_form(), sigma, psi).phase)}
+        CLOSED_FORMS: (partial(full_speed, ap, kernel_model("closed-form"), psi=psi),
+                       lambda sigma: full_steady_state(ap, kernel_model("closed-form"), sigma, psi).phase)}
     bounds = sigma_bounds(ap)
     rows = []
     for grade in GRADES:

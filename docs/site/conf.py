@@ -125,18 +125,18 @@ html_show_sourcelink = False
 # -- the API reference (pages written into api/generated/ by the snail_docs extension) -------------------
 snail_api_groups = [
     ("Fluid forces for one instant", [
-        "lubrication", "lubrication.forces", "lubrication.geometry", "lubrication.closed_form",
+        "lubrication", "lubrication.registry", "lubrication.kernels", "lubrication.geometry", "lubrication.closed_form",
         "lubrication.reynolds", "lubrication.cavitation", "lubrication.stokes_exact", "lubrication.stokes",
         "lubrication.reynolds2d", "lubrication.finite_length", "lubrication.stokes3d",
-        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film_transport", "lubrication.files",
+        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film_transport", "numerics.files",
     ]),
     ("Compiled kernels of the force models", [
-        "lubrication._kernels", "lubrication._cavitation_kernels", "lubrication._kernels2d",
-        "lubrication._stokes_mesh", "lubrication._inertia_table", "lubrication._film_kernels", "lubrication._jit",
+        "lubrication.reynolds_kernels", "lubrication.cavitation_kernels", "lubrication.reynolds2d_kernels",
+        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.film_kernels", "numerics.jit",
     ]),
     ("Simulation", [
         "dynamics", "dynamics.simulation", "dynamics.regime", "dynamics.initial", "dynamics.apparatus",
-        "dynamics.keys",
+        "numerics.keys",
     ]),
     ("Equations of motion", [
         "dynamics.equations", "dynamics.equations.full", "dynamics.equations.reduced",
@@ -144,21 +144,21 @@ snail_api_groups = [
         "dynamics.equations.film",
     ]),
     ("Rough contact", [
-        "dynamics.contact", "dynamics.contact.reduced", "dynamics.contact.full", "dynamics.contact.hybrid",
+        "dynamics.contact", "dynamics.contact.reduced", "dynamics.contact.full", "numerics.hybrid",
         "dynamics.contact.steady", "dynamics.contact.roughness", "dynamics.contact.rough",
     ]),
     ("The integrator", [
-        "dynamics.integrate", "dynamics.engine", "dynamics.engine.ivp", "dynamics.engine.driver",
-        "dynamics.engine.compiled", "dynamics.engine.radau", "dynamics.engine.roots", "dynamics.engine.linalg",
-        "dynamics.engine.state", "dynamics.engine.borrow",
+        "numerics.integrate", "numerics.engine", "numerics.engine.ivp", "numerics.engine.driver",
+        "numerics.engine.compiled", "numerics.engine.radau", "numerics.engine.roots", "numerics.engine.linalg",
+        "numerics.engine.state", "numerics.engine.borrow",
     ]),
-    ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "dynamics.scenes.units"]),
+    ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "numerics.units"]),
     ("The application: runs, files, sweeps, the command", [
         "dynamics.app", "dynamics.app.run", "dynamics.app.output", "dynamics.app.figures",
         "dynamics.app.figure_process",
-        "dynamics.app.auto", "dynamics.app.folder", "dynamics.app.cli", "dynamics.app.precompile", "dynamics.app.sweeps",
+        "dynamics.app.auto", "numerics.folder", "dynamics.app.cli", "dynamics.app.precompile", "dynamics.app.sweeps",
         "dynamics.app.sweeps.spec", "dynamics.app.sweeps.point", "dynamics.app.sweeps.compiled",
         "dynamics.app.sweeps.batch", "dynamics.app.sweeps.store", "dynamics.app.sweeps.run",
-        "dynamics.app.sweeps.plot", "dynamics.app.sweeps.cli",
+        "dynamics.app.sweeps.plot", "dynamics.app.commands.forces", "dynamics.app.commands.run", "dynamics.app.commands.sweep", "dynamics.app.command",
     ]),
 ]

@@ -53,11 +53,22 @@ def _decade(value, _position=None) -> str:
     return "10" + str(exponent).translate(_SUPERSCRIPT)
 
 
+def _forces_label(name: str) -> str:
+    """The forces in words: "stokes-exact/open-ends+inertia" is "exact Stokes forces, open ends, first inertial
+    correction"; "reynolds/jfo" the Reynolds-equation forces with JFO cavitation."""
+    base, _, inertia = name.partition("+")
+    base, _, variant = base.partition("/")
+    words = [_FORCES.get(base, base)]
+    if variant:
+        words.append("open ends" if variant == "open-ends" else f"{variant} cavitation")
+    if inertia:
+        words.append("first inertial correction")
+    return ", ".join(words)
+
+
 def _title(trajectory) -> str:
     equations = _EQUATIONS.get(trajectory.equations, trajectory.equations)
-    forces = trajectory.forces
-    forces = _FORCES.get(forces.split("/")[0], forces) + (
-        f", {forces.split('/', 1)[1]} cavitation" if "/" in forces else "")
+    forces = _forces_label(trajectory.forces)
     line1 = f"{equations}, {forces}"
     line2 = f"{trajectory.status}: {trajectory.message}"
     g = trajectory.groups

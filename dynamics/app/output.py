@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 
 from dynamics.app.figures import figure_png
-from dynamics.app.folder import OutputFolder
-from dynamics.simulation import Trajectory
-from lubrication.files import write_bytes, write_json, write_text
+from dynamics.trajectory import Trajectory
+from numerics.files import write_bytes, write_json, write_text
+from numerics.folder import OutputFolder
 
 __all__ = ["CSV_COLUMNS", "MAX_ROWS", "summary", "thinning", "trajectory_csv", "write_outputs"]
 
@@ -65,13 +65,15 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "success": trajectory.success,
         "stop_event": trajectory.event,
         "t_end": t_end,
-        "mean_speed": float(c["x_b"][-1] / t_end) if t_end > 0 else 0.0,
+        "mean_speed": trajectory.mean_speed,
+        "late_mean_speed": trajectory.late_mean_speed,
         "regime": trajectory.regime,
         "regime_evidence": trajectory.evidence,
         "final": {name: float(c[name][-1]) for name in ("kappa", "one_minus_kappa", "phi", "omega_a",
                                                          "omega_b", "x_b")},
         "events": trajectory.events,
         "wall_time_s": trajectory.wall_time_s,
+        "compile_time_s": trajectory.compile_time_s,
         "steps": trajectory.steps,
         "nfev": trajectory.nfev,
         "njev": trajectory.njev,
@@ -80,6 +82,8 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "dimensionless": trajectory.dimensionless,
         "units": ("times and rates in tau, eps in delta, x_b in b" if trajectory.dimensionless
                   else "SI: s, m, rad, rad/s; mean_speed in m/s"),
+        "mean_speed_note": "mean_speed is X_b/t from the release, the transient included; late_mean_speed is the "
+                           "mean over the second half, where the regime is judged",
         **trajectory.groups,
         **trajectory.info,
     }
@@ -104,7 +108,7 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
                   plot: bool = True, max_rows: int = MAX_ROWS, draw=figure_png, **extra) -> dict:
     """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
 
-    ``folder`` is an entered :class:`~dynamics.app.folder.OutputFolder` (the
+    ``folder`` is an entered :class:`~numerics.folder.OutputFolder` (the
     command line opens it before the run, so that a bad path is refused before
     anything is computed), or a path, which is opened here. The files go into
     its staging folder and are moved into place together; the summary is returned.

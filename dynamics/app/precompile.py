@@ -6,7 +6,7 @@ the closed forms), and numba writes every kernel that takes to the
 ``__pycache__`` folder beside its source. Other models compile on their first
 run, as before (the reduced equations (2.11): about 30 s); each would add as
 much to every install. That cache is keyed on the packages' sources
-(``lubrication._jit``), the Python and numba versions and the CPU, so the
+(``numerics.jit``), the Python and numba versions and the CPU, so the
 installed copy loads it as it stands; where anything differs (another CPU,
 another numba) numba compiles again, as it would without it.
 """

@@ -7,9 +7,10 @@ from dataclasses import replace
 from dynamics.app.auto import resolve_model
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact
-from dynamics.equations.forces import force_model
 from dynamics.scenes import Scene, SceneError
-from dynamics.simulation import Trajectory, simulate
+from dynamics.simulation import simulate
+from dynamics.trajectory import Trajectory
+from lubrication import registry
 from lubrication.reynolds import uniform_grid_cells, uniform_grid_reach
 
 __all__ = ["run_scene"]
@@ -59,21 +60,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     system = scene.apparatus if scene.apparatus is not None else scene.groups.reduced_params
     forces = "closed-form"
     if model.equations == "full":
-        options = {"n": model.n, "grid": model.grid} if model.forces == "reynolds" else {}
-        if model.ends != "infinite":
-            options.update(ends=model.ends, length_over_a=scene.apparatus.length / scene.apparatus.a)
-        if model.inertia != "none":
-            if model.forces not in ("closed-form", "stokes-exact", "stokes") or model.ends != "infinite":
-                raise _refuse("model.inertia", "the first inertial correction is tabulated for plane flow and "
-                                               "added to model.forces = 'closed-form' or 'stokes-exact' with "
-                                               "model.ends = 'infinite'")
-            options.update(inertia=True, rho=scene.apparatus.rho)
-        if cavitation is not None:
-            options.update(cavitation=cavitation.model, p_cav=cavitation.p_cav, p_ref=cavitation.p_ref)
-        try:
-            forces = force_model(model.forces, **options)
-        except ValueError as err:
-            raise _refuse("model.ends", str(err)) from err
+        forces = _force_model(scene)
     elif model.ends != "infinite" or model.frame_terms != "paper" or model.inertia != "none":
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
                                   ("model.frame_terms", True)) if v)
@@ -100,6 +87,31 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if reach is not None:
         _report_resolution(trajectory, model, reach)
     return trajectory
+
+
+#: The scene key of each option of the force-model registry (:mod:`lubrication.registry`).
+_SCENE_KEYS = {"n": "model.n", "grid": "model.grid", "ends": "model.ends", "inertia": "model.inertia",
+               "cavitation": "cavitation.model", "p_cav": "cavitation.p_cav", "p_ref": "cavitation.p_ref"}
+
+
+def _force_model(scene: Scene):
+    """The scene's force model for the full equations (:func:`lubrication.registry.kernel_model`): the model's
+    own options the [model] section holds, and the compositions the scene asks for; a SceneError names the key."""
+    model, apparatus = scene.model, scene.apparatus
+    spec = registry.get(model.forces)
+    options = {name: getattr(model, name) for name in spec.options if name in ("n", "grid")}
+    if model.ends != "infinite":
+        options["ends"] = model.ends
+    if model.inertia != "none":
+        options["inertia"] = model.inertia
+    if scene.cavitation is not None:
+        options.update(cavitation=scene.cavitation.model, p_cav=scene.cavitation.p_cav, p_ref=scene.cavitation.p_ref)
+    try:
+        return registry.kernel_model(model.forces, length_over_a=apparatus.length / apparatus.a, rho=apparatus.rho,
+                                     **options)
+    except ValueError as err:
+        option = str(err).split(":")[0]
+        raise _refuse(_SCENE_KEYS.get(option, "model.forces"), str(err).partition(": ")[2] or str(err)) from err
 
 
 def _resolution_reason(model, reach: float) -> str:

@@ -85,28 +85,18 @@ from collections import namedtuple
 import numpy as np
 from scipy.optimize import fsolve
 
-from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING, ContactParams
 from dynamics.equations import full
-from dynamics.equations.forces import (
-    KERNELS,
-    KERNELS_HASH,
-    KIND_NAMES,
-    ForceModel,
-    evaluate,
-)
 from dynamics.equations.limits import Limits
-from lubrication._jit import specialise
+from lubrication.kernels import KernelModel
+from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
+from numerics.jit import specialise
 
 __all__ = [
     "LOCKED_EVENTS",
     "SLIDING_EVENTS",
     "ContactFunctions",
-    "contact_events",
     "contact_functions",
-    "contact_jacobian",
-    "contact_rates",
-    "contact_rhs",
     "friction_coefficient",
     "impact",
     "slip",
@@ -121,13 +111,13 @@ def friction_coefficient(apparatus, contact: ContactParams) -> float:
 
 # -- contact forces and accelerations (jitted) -------------------------------------
 # Templates: FORCES (a force kernel), CONTACT_RATES and CONTACT_RHS are bound, and the copies
-# compiled, by _compiled below (contact_rates, ..., for any kind; contact_functions).
+# compiled, by _compiled below (contact_functions).
 
 def _contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model):
     """(chi'', Omega_a', Omega_b', N, F) in contact, SI; ``y`` = (chi, chi', Omega_a, Omega_b, ...).
 
     ``locked`` keeps the slip at zero; otherwise F = -sigma tan(psi_hat) N. ``model`` is
-    :attr:`dynamics.equations.forces.ForceModel.data`.
+    :attr:`lubrication.kernels.KernelModel.data`.
     """
     a, b = p[0], p[1]
     eps = kappa_star * (b - a)
@@ -293,29 +283,29 @@ def _compiled(forces, name: str) -> ContactFunctions:
                             specialise(_contact_events, name, CONTACT_RATES=rates))
 
 
-# For any force model, the kind told apart at run time: these carry every kernel's code.
-contact_rates, contact_rhs, contact_jacobian, contact_events = _compiled(evaluate, f"any_{KERNELS_HASH}")
-
-
 @functools.cache
-def contact_functions(kind: int) -> ContactFunctions:
-    """The contact phases' functions compiled for the force models of ``kind`` only.
+def _compiled_for(kernel, name: str) -> ContactFunctions:
+    return _compiled(kernel, name)
 
-    As :func:`dynamics.equations.full.model_functions`: what a run takes.
+
+def contact_functions(model: KernelModel) -> ContactFunctions:
+    """The contact phases' functions compiled with the kernel of ``model``.
+
+    As :func:`dynamics.equations.full.model_functions`: one set per kernel, what a run takes.
     """
-    return _compiled(KERNELS[kind], KIND_NAMES[kind])
+    return _compiled_for(model.kernel, model.kernel_name)
 
 
 class _Run:
     """What the phases of one full-model contact run share."""
 
-    def __init__(self, apparatus, force_model: ForceModel, contact: ContactParams, limits: Limits, rtol: float,
+    def __init__(self, apparatus, force_model: KernelModel, contact: ContactParams, limits: Limits, rtol: float,
                  frame_terms: str = "paper"):
         self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
         self.p = full.params_array(apparatus, frame_terms)
         self.model = full.model_arguments(force_model)
-        self.functions = contact_functions(force_model.kind)
-        self.free_functions = full.model_functions(force_model.kind)
+        self.functions = contact_functions(force_model)
+        self.free_functions = full.model_functions(force_model)
         self.tan_psi_hat = friction_coefficient(apparatus, contact)
         self.free_args = full.run_args(apparatus, force_model, gap_floor=limits.gap_floor,
                                        max_reynolds=limits.reynolds, max_turns=limits.max_turns,
@@ -409,13 +399,13 @@ class _Run:
                 "c_eps": forces[:, 0] / weight, "c_chi": -forces[:, 1] / (ap.delta_over_a * weight)}
 
 
-def run_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, initial, t_end: float, *,
+def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams, initial, t_end: float, *,
                      limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
                      frame_terms: str = "paper") -> dict:
     """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
 
-    Returns the fields of :func:`dynamics.contact.hybrid.run_phases` with times in
+    Returns the fields of :func:`numerics.hybrid.run_phases` with times in
     tau and the columns scaled (rates in 1/tau, X_b in b), as
     :mod:`dynamics.simulation` expects; use :func:`dynamics.simulation.simulate` for a
     :class:`~dynamics.simulation.Trajectory`. At kappa = kappa* the run starts as
@@ -437,7 +427,7 @@ def run_full_contact(apparatus, force_model: ForceModel, contact: ContactParams,
     return fields
 
 
-def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactParams, locked: bool,
+def steady_full_contact(apparatus, force_model: KernelModel, contact: ContactParams, locked: bool,
                         guess) -> np.ndarray:
     """A steadily rolling contact state (chi, Omega_a, Omega_b) of the full model, chi' = 0.
 
@@ -447,7 +437,7 @@ def steady_full_contact(apparatus, force_model: ForceModel, contact: ContactPara
     """
     p = full.params_array(apparatus)
     model = full.model_arguments(force_model)
-    rates = contact_functions(force_model.kind).rates
+    rates = contact_functions(force_model).rates
     args = (contact.kappa_star, contact.one_minus_kappa_star)
     tan_psi_hat = friction_coefficient(apparatus, contact)
     tau, a = apparatus.tau, apparatus.a

@@ -125,14 +125,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynamics.equations import reduced
-from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
     ReducedParams,
     initial_state,
 )
-from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
+from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
+from numerics.jit import jit
 
 __all__ = [
     "FREE",
@@ -176,6 +176,15 @@ class ContactParams:
         object.__setattr__(self, "kappa_star", check_range("kappa_star", self.kappa_star, 0.0, 1.0,
                                                            low_open=True))
         object.__setattr__(self, "psi", check_range("psi", self.psi, 0.0, 0.5 * math.pi, unit="rad"))
+
+    @classmethod
+    def from_device(cls, apparatus, *, sigma: float, friction_angle: float) -> ContactParams:
+        """The contact of ``apparatus`` from what one measures: the asperities' gap ``sigma`` (m, in (0, delta))
+        and the physical friction angle psi_hat (rad, in [0, pi/2)), tan(psi) = (a/delta) tan(psi_hat) (C2)."""
+        delta = apparatus.delta
+        sigma = check_range("sigma", sigma, 0.0, delta, low_open=True, unit=f"m (the gap delta = {delta:g} m)")
+        friction_angle = check_range("friction_angle", friction_angle, 0.0, 0.5 * math.pi, unit="rad")
+        return cls(1.0 - sigma / delta, math.atan(math.tan(friction_angle) / apparatus.delta_over_a))
 
     @property
     def one_minus_kappa_star(self) -> float:
@@ -450,7 +459,7 @@ def run_contact(params: ReducedParams, contact: ContactParams, t_end: float, kap
                 method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None, max_steps: int = 2_000_000,
                 max_switches: int = MAX_SWITCHES, progress=None) -> dict:
     """The reduced model with rough contact from t = 0 to ``t_end`` (units of tau); the fields of
-    :func:`dynamics.contact.hybrid.run_phases` with columns kappa, 1 - kappa, phi, Omega_a,
+    :func:`numerics.hybrid.run_phases` with columns kappa, 1 - kappa, phi, Omega_a,
     Omega_b, X_b, C_e, C_x (scaled units).
 
     At kappa0 = kappa* with cos(phi0) < 0 the run starts in contact (locked or

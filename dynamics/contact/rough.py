@@ -93,7 +93,7 @@ Switching: the events of :mod:`dynamics.contact.reduced`, on the moving constrai
 
 The phases as compiled functions
 --------------------------------
-Each phase is a smooth system run by :func:`dynamics.contact.hybrid.run_phases`,
+Each phase is a smooth system run by :func:`numerics.hybrid.run_phases`,
 one compiled call per phase, with ``f(t, y, args)`` functions and ``args``
 from :func:`phase_args` (the groups, the contact, the runaway limit and the
 Fourier coefficients of both surfaces):
@@ -169,7 +169,6 @@ import math
 
 import numpy as np
 
-from dynamics.contact.hybrid import MAX_SWITCHES, Phase, run_phases
 from dynamics.contact.reduced import (
     FREE,
     LOCKED,
@@ -181,8 +180,9 @@ from dynamics.contact.roughness import RoughContact, _local_kernel
 from dynamics.equations import reduced
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams, initial_state
-from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
+from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
+from numerics.jit import jit
 
 __all__ = [
     "FREE_EVENTS",
@@ -581,7 +581,7 @@ def run_rough_contact(params: ReducedParams, rough: RoughContact, t_end: float, 
     Returns
     -------
     dict
-        The fields of :func:`dynamics.contact.hybrid.run_phases` with columns kappa,
+        The fields of :func:`numerics.hybrid.run_phases` with columns kappa,
         one_minus_kappa, phi, omega_a, omega_b, x_b, c_eps, c_chi, theta_a and
         theta_b (the body angles phi - Theta_a and phi - X_b, rad), scaled units.
         Use :func:`dynamics.simulation.simulate` for a :class:`~dynamics.simulation.Trajectory`.

@@ -85,8 +85,8 @@ from typing import NamedTuple
 import numpy as np
 
 from dynamics.contact.reduced import ContactParams
-from lubrication._jit import jit
 from lubrication.geometry import check_range
+from numerics.jit import jit
 
 __all__ = ["CLIP_FLOOR", "CLIP_KNEE", "MAX_MODES", "LocalGap", "RoughContact", "SurfaceHeights", "soft_floor"]
 

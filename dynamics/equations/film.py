@@ -32,20 +32,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynamics.apparatus import Apparatus
-from dynamics.engine import EVENT
 from dynamics.equations import full
-from dynamics.equations.forces import closed_form
 from dynamics.equations.full import _A, _B, _LEN, _MU, central_differences
-from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.integrate import integrate
-from lubrication._film_kernels import film_rates as film_kernel
-from lubrication._jit import jit
+from dynamics.trajectory import Recorder, Trajectory, event_names
+from lubrication.film_kernels import film_rates as film_kernel
 from lubrication.film_transport import TransportedFilm, dual_areas, film_rates
 from lubrication.geometry import Annulus, Fluid, Motion, check_finite, check_range
+from lubrication.registry import kernel_model
+from numerics.engine import EVENT
+from numerics.integrate import integrate
+from numerics.jit import jit
 
 __all__ = ["MassBalance", "Rocking", "initial_state", "jacobian", "mass_balance", "rhs", "rock", "rocking_jacobian",
-           "rocking_rhs", "run_args", "simulate_film", "void_scale"]
+           "film_run", "rocking_rhs", "run_args", "void_scale"]
 
 #: A void's finite-difference step and absolute-tolerance floor, as a fraction of a mean dual cell's area:
 #: small enough that a probe of a pressed node does not cross its switch (module docstring).
@@ -54,7 +54,7 @@ VOID_FLOOR = 1e-6
 
 @jit(inline="always")
 def _film(film, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, void, reservoir, d_void):
-    """:func:`lubrication._film_kernels.film_rates` with the model's data as one tuple; d_void receives dvoid/dt.
+    """:func:`lubrication.film_kernels.film_rates` with the model's data as one tuple; d_void receives dvoid/dt.
 
     Returns f_eps, f_chi, T_a and dR/dt.
     """
@@ -113,7 +113,7 @@ def run_args(apparatus: Apparatus, film: TransportedFilm, *, gap_floor: float, m
     (parameters, film data, typical scales, event parameters); the parameters and
     the events are the full model's (:func:`dynamics.equations.full.run_args`).
     """
-    base = full.run_args(apparatus, closed_form(), gap_floor=gap_floor, max_reynolds=max_reynolds,
+    base = full.run_args(apparatus, kernel_model("closed-form"), gap_floor=gap_floor, max_reynolds=max_reynolds,
                          max_turns=max_turns, frame_terms=frame_terms)
     floor = void_scale(apparatus, film.n)
     typical = np.concatenate((base[2], np.full(film.n + 1, floor)))
@@ -127,49 +127,35 @@ def initial_state(apparatus: Apparatus, initial: Initial, film: TransportedFilm)
     return np.concatenate((motion, np.zeros(film.n + 1)))
 
 
-def simulate_film(apparatus: Apparatus, initial: Initial, t_end: float, film: TransportedFilm, *,
-                  limits: Limits = Limits(), rtol: float = 1e-8, method: str = "radau", t_eval=None,
-                  max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper"):
-    """Integrate the full model with the transported film; as :func:`dynamics.simulation.simulate`.
+def film_run(run: Recorder, initial: Initial, film: TransportedFilm) -> Trajectory:
+    """The full model with the transported ``film`` from ``initial`` (SI), over the run's settings: the case
+    of :func:`dynamics.simulation.simulate` whose ``forces`` is a :class:`~lubrication.film_transport.TransportedFilm`.
 
-    Returns a :class:`dynamics.simulation.Trajectory` whose columns add, per row,
-    ``liquid`` (the film's liquid per unit length, sum_j (V_j - v_j), m^2), ``cavity_area``
-    (its gas, sum_j v_j, m^2), ``cavitated_fraction`` (share of the nodes holding gas),
-    ``reservoir`` (R, m^2) and ``reservoir_pressure`` (Pa); ``info["void"]`` holds the
-    voids (N, rows) and ``info["film"]`` the model. :func:`mass_balance` checks the
+    The :class:`~dynamics.trajectory.Trajectory`'s columns add, per row, ``liquid`` (the film's liquid per
+    unit length, sum_j (V_j - v_j), m^2), ``cavity_area`` (its gas, sum_j v_j, m^2), ``cavitated_fraction``
+    (share of the nodes holding gas), ``reservoir`` (R, m^2) and ``reservoir_pressure`` (Pa);
+    ``info["void"]`` holds the voids (N, rows) and ``info["film"]`` the model. :func:`mass_balance` checks the
     film's liquid against what crossed its faces.
     """
-    from dynamics.simulation import _Run
-
-    if not isinstance(film, TransportedFilm):
-        msg = f"film must be a TransportedFilm, got {type(film).__name__}"
-        raise TypeError(msg)
-    if not isinstance(initial, Initial):
-        msg = f"initial must be an Initial, got {type(initial).__name__}"
-        raise TypeError(msg)
-    t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True, unit="s")
-    run = _Run(apparatus, False, t_end, limits, method, rtol, None if t_eval is None else np.asarray(t_eval, float),
-               max_steps, progress)
-    run.frame_terms = frame_terms
+    apparatus, limits = run.system, run.limits
     args = run_args(apparatus, film, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
-                    max_turns=limits.max_turns, frame_terms=frame_terms)
+                    max_turns=limits.max_turns, frame_terms=run.frame_terms)
     stops = int(limits.stops)
-    result = integrate(rhs, jacobian, (0.0, t_end), initial_state(apparatus, initial, film), args=args,
-                       method=method, rtol=rtol, atol=rtol * args[2], events=full.events,
+    result = integrate(rhs, jacobian, (0.0, run.t_end), initial_state(apparatus, initial, film), args=args,
+                       method=run.method, rtol=run.rtol, atol=run.rtol * args[2], events=full.events,
                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=run.t_eval,
-                       max_steps=max_steps, progress=progress)
+                       max_steps=run.max_steps, progress=run.progress)
     tau = apparatus.tau
     obs = full.observables(apparatus, result.y[:7], initial.phi)
-    names = np.array(("", *full.EVENT_NAMES), dtype=object)[result.event + 1]
-    fields = {"t": result.t / tau, "kind": result.kind, "event_names": names,
+    fields = {"t": result.t / tau, "kind": result.kind, "event_names": event_names(result.event, full.EVENT_NAMES),
               "kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
               "kappa_dot": obs["kappa_dot"] * tau, "phi_dot": obs["phi_dot"] * tau,
               "omega_a": obs["omega_a"] * tau, "omega_b": obs["omega_b"] * tau, "x_b": obs["x_b"] / apparatus.b,
               "stop": full.EVENT_NAMES[result.stop_event] if result.stop_event >= 0 else "",
               "code": result.code, "status_code": result.status, "message": result.message,
               "steps": result.steps, "nfev": result.nfev, "njev": result.njev, "nlu": result.nlu}
-    trajectory = run._trajectory(fields, "full", film.name, apparatus.reduced_params)
-    keep = run._keep(fields)
+    trajectory = run.trajectory(fields, "full", film.name, apparatus.reduced_params)
+    keep = run.keep(fields)
     void = result.y[7:7 + film.n, keep]
     reservoir = result.y[7 + film.n, keep]
     areas = _areas(apparatus, film.n, obs["one_minus_kappa"][keep])
@@ -231,7 +217,7 @@ def _mass_balance(annulus: Annulus, fluid: Fluid, film: TransportedFilm, t, one_
 
 
 def mass_balance(apparatus: Apparatus, trajectory) -> MassBalance:
-    """The film's mass balance along a run of :func:`simulate_film`."""
+    """The film's mass balance along a run with a transported film (:func:`film_run`)."""
     film, void = trajectory.info["film"], trajectory.info["void"]
     c = trajectory.columns
     motions = np.column_stack((apparatus.delta * c["kappa_dot"], c["omega_a"] - c["phi_dot"],

@@ -54,7 +54,7 @@ q_t = |u| chi', in which the squeeze force is linear,
 a_r, a_t the components of r''/delta along e_eps and e_chi (from differentiating
 kappa = |u|/s twice in polar form). These are singular at |u| = 0, so the run
 returns to the Cartesian velocity below :data:`CARTESIAN_BELOW`; both switches
-are events located on the dense output (:mod:`dynamics.contact.hybrid`).
+are events located on the dense output (:mod:`numerics.hybrid`).
 """
 
 from __future__ import annotations
@@ -65,20 +65,16 @@ from collections import namedtuple
 
 import numpy as np
 
-from dynamics.equations.forces import (
-    KERNELS,
-    KERNELS_HASH,
-    KIND_NAMES,
-    ForceModel,
-    evaluate,
-)
-from lubrication._jit import jit, specialise
+from lubrication.kernels import KernelModel
+from numerics.hybrid import Phase
+from numerics.jit import jit, specialise
 
 __all__ = [
     "CARTESIAN_BELOW",
     "CARTESIAN_EVENT_NAMES",
     "EVENT_NAMES",
     "FRAME_TERMS",
+    "FreeFull",
     "POLAR_ABOVE",
     "POLAR_EVENT_NAMES",
     "POLAR_STATE_NAMES",
@@ -90,15 +86,11 @@ __all__ = [
     "frame_force",
     "gravity_response",
     "initial_state",
-    "jacobian",
     "observables",
     "params_array",
     "polar_events",
-    "polar_jacobian",
     "polar_observables",
-    "polar_rhs",
     "reduced_reynolds",
-    "rhs",
     "run_args",
     "to_cartesian",
     "to_polar",
@@ -237,8 +229,7 @@ def gravity_response(p):
 def _accelerations(forces, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, omega_a, omega_b):
     """(x'', z'', Omega_a', Omega_b') of (2.1)-(2.4) in a state given by its geometry and rates.
 
-    ``forces`` is the compiled force kernel (:data:`dynamics.equations.forces.KERNELS`,
-    or :func:`~dynamics.equations.forces.evaluate` for any kind).
+    ``forces`` is a model's compiled force kernel (:mod:`lubrication.kernels`).
     """
     f_eps, f_chi, t_a = forces(model, p[_A], p[_B], p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
                                omega_b - chi_dot)
@@ -249,7 +240,7 @@ def _accelerations(forces, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, 
 
 
 # _rhs, _polar_rhs and their Jacobians are templates: FORCES (a force kernel) and RHS or POLAR_RHS
-# are bound, and the copies compiled, by _compiled below (rhs, ..., for any kind; model_functions).
+# are bound, and the copies compiled, by _compiled below (model_functions).
 def _rhs(t, y, args):
     """dy/dt of the full model; ``args`` from :func:`run_args` (the parameters, then the force model's data)."""
     p, model = args[0], args[1]
@@ -373,19 +364,20 @@ def _compiled(forces, name: str) -> ModelFunctions:
                           specialise(_polar_jacobian, name, POLAR_RHS=polar_rhs))
 
 
-# For any force model, the kind told apart at run time: these carry every kernel's code.
-rhs, jacobian, polar_rhs, polar_jacobian = _compiled(evaluate, f"any_{KERNELS_HASH}")
-
-
 @functools.cache
-def model_functions(kind: int) -> ModelFunctions:
-    """The full model's functions compiled for the force models of ``kind`` only (:data:`~dynamics.equations.forces.KERNELS`).
+def _compiled_for(kernel, name: str) -> ModelFunctions:
+    return _compiled(kernel, name)
 
-    What a run takes: it loads the code of its own force model, not of all four
-    (module docstring of :mod:`dynamics.equations.forces`). The same numbers as
-    :data:`rhs` and the others, which serve any model.
+
+def model_functions(model: KernelModel) -> ModelFunctions:
+    """The full model's functions compiled with the kernel of ``model`` (:mod:`lubrication.kernels`).
+
+    Each kernel gets its own copies of the templates above, filed under its
+    :attr:`~lubrication.kernels.KernelModel.kernel_name`: a run loads the code of
+    its own force model only, and the force model is one argument of one numba
+    type (its packed data), so a kernel's copies serve every set of its options.
     """
-    return _compiled(KERNELS[kind], KIND_NAMES[kind])
+    return _compiled_for(model.kernel, model.kernel_name)
 
 
 #: The components of :func:`events`, in order, as in :data:`dynamics.equations.reduced.EVENT_NAMES`:
@@ -477,7 +469,7 @@ def polar_events(t, y, args):
     return g
 
 
-def run_args(apparatus, force_model: ForceModel, *, gap_floor: float, max_reynolds: float = math.inf,
+def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
              frame_terms: str = "paper") -> tuple:
     """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events` for a run.
@@ -559,6 +551,63 @@ def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.nda
         "kappa_dot": y[2] / s**3, "phi_dot": y[3] / big_u}
 
 
-def model_arguments(force_model: ForceModel) -> tuple:
+def model_arguments(force_model: KernelModel) -> np.ndarray:
     """The force model's data as :func:`rhs` takes them (``args[1]``)."""
     return force_model.data
+
+
+# -- a free run: the Cartesian velocity away from contact, the polar one near it --------------------------
+
+class FreeFull:
+    """The free full model as a hybrid run: Cartesian velocity away from contact, polar near it.
+
+    the module docstring explains why (the Newton iteration near
+    contact) and where (|u| above POLAR_ABOVE, back below CARTESIAN_BELOW); a
+    change of variables is a phase that continues the motion
+    (:class:`numerics.hybrid.Phase`). A cavitating film stays in the
+    Cartesian velocity (``polar=False``): its forces are only piecewise smooth,
+    and at a kink of the Swift-Stieber film (steel, 1 degree, 1 atm below the
+    bubble, 1 - kappa = 1.2e-4) the Newton iterations of Radau IIA and of BDF
+    both failed in the polar velocity, where the Cartesian one runs through.
+    """
+
+    def __init__(self, apparatus, args, functions: ModelFunctions, stops: int, rtol: float, polar: bool = True):
+        self.ap, self.args, self.f, self.polar = apparatus, args, functions, polar
+        typical = args[2]
+        self.atol = rtol * typical
+        # q_r and q_t are rates of |u|: 1/tau for the size of their absolute tolerance
+        self.polar_atol = rtol * np.array([*typical[:2], 1.0 / apparatus.tau, 1.0 / apparatus.tau, *typical[4:]])
+        self.terminal = (stops, stops, 1, 0, 0, 1)
+
+    def phase(self, y) -> Phase:
+        """The first phase, from state ``y`` of the right-hand side, in the variables its |u| calls for."""
+        if self.polar and math.hypot(y[0], y[1]) > POLAR_ABOVE:
+            return self._polar(to_polar(self.ap, y))
+        return self._cartesian(np.asarray(y, float))
+
+    def _cartesian(self, y, continues: bool = False) -> Phase:
+        if not self.polar:
+            return Phase("free", self.f.rhs, self.f.jacobian, events, self.args, y, EVENT_NAMES,
+                         self.terminal[:5], (-1, -1, -1, 0, 1), self.atol, extra={"polar": False})
+        return Phase("free", self.f.rhs, self.f.jacobian, cartesian_events, self.args, y,
+                     CARTESIAN_EVENT_NAMES, self.terminal, (-1, -1, -1, 0, 1, 1), self.atol, continues=continues,
+                     extra={"polar": False})
+
+    def _polar(self, y, continues: bool = False) -> Phase:
+        return Phase("free", self.f.polar_rhs, self.f.polar_jacobian, polar_events, self.args, y,
+                     POLAR_EVENT_NAMES, self.terminal, (-1, -1, -1, 0, 1, -1), self.polar_atol,
+                     continues=continues, extra={"polar": True})
+
+    def transition(self, phase: Phase, reason: str, t: float, end, phi: float) -> Phase:
+        if reason == "to_polar":
+            return self._polar(to_polar(self.ap, end), continues=True)
+        return self._cartesian(to_cartesian(self.ap, end), continues=True)
+
+    def columns(self, phase: Phase, t, y, kind) -> dict:
+        """Scaled columns of one phase's rows (t in tau, rates in 1/tau, X_b in b)."""
+        ap, tau = self.ap, self.ap.tau
+        observe = polar_observables if phase.extra["polar"] else observables
+        obs = observe(ap, y, phase.extra["phi0"])
+        return {"kappa": obs["kappa"], "one_minus_kappa": obs["one_minus_kappa"], "phi": obs["phi"],
+                "kappa_dot": obs["kappa_dot"] * tau, "phi_dot": obs["phi_dot"] * tau, "omega_a": obs["omega_a"] * tau,
+                "omega_b": obs["omega_b"] * tau, "x_b": obs["x_b"] / ap.b}

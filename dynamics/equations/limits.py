@@ -18,12 +18,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynamics.equations.full import frame_force
-from dynamics.keys import check_fields, key
-from lubrication._jit import jit
+from numerics.jit import jit
+from numerics.keys import check_fields, key
 
-__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MIN_GAP_FLOOR_FULL", "MAX_REYNOLDS", "MAX_TURNS", "ON_INVALID",
-           "WARN_FORCE_ERROR", "Limits", "estimated_force_error", "first_order_force_over_weight",
-           "frame_force_over_weight", "inertia_report", "limit_message", "reduced_reynolds"]
+__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MAX_REYNOLDS", "MAX_TURNS", "MIN_GAP_FLOOR_FULL", "ON_INVALID",
+           "VALIDITY_EVENTS", "WARN_FORCE_ERROR", "Limits", "ValidityWarning", "estimated_force_error",
+           "first_order_force_over_weight", "frame_force_over_weight", "inertia_report", "inertia_warning",
+           "limit_message", "reduced_reynolds"]
 
 #: The continuum film loses its meaning near 1 - kappa ~ 1e-7 (a molecule across the paper's
 #: 3.25 mm gap); the mathematical model is followed two decades further, so that its own approach
@@ -259,3 +260,40 @@ def inertia_report(apparatus, columns: dict, corrected: bool = False) -> dict:
             "basis": "the table's interpolation and the second-order remainder, against Newton solutions of "
                      "steady Navier-Stokes flow (docs/inertia/inertia.md)"}
     return report
+
+
+class ValidityWarning(UserWarning):
+    """A run went past, or stopped at, a limit of its model's validity (:class:`Limits`), or its forces may
+    err by more than :data:`WARN_FORCE_ERROR` (:func:`inertia_warning`). Filter it as any warning:
+    ``warnings.simplefilter("ignore", ValidityWarning)``."""
+
+
+#: The limits whose stop is no success: the model left its validity there (a runaway's stop bounds a cost).
+VALIDITY_EVENTS = ("gap_floor", "reynolds")
+
+
+def inertia_warning(inertia: dict) -> str:
+    """What a run's inertia report (:func:`inertia_report`) warns of, and what to do about it, or "".
+
+    The forces the run used are judged: the quasi-steady Stokes forces by their
+    first-order error, forces with the first inertial correction by what that
+    leaves, and by whether the run went past the Reynolds numbers at which it was measured.
+    """
+    corrected = inertia.get("corrected_forces")
+    if corrected is not None:
+        beyond = inertia["max_reduced_reynolds"] > corrected["measured_to_reduced_reynolds"]
+        if corrected["max_estimated_force_error"] <= WARN_FORCE_ERROR and not beyond:
+            return ""
+        past = (f"; Re* reached {inertia['max_reduced_reynolds']:.3g} (t = {inertia['t_at_max_reduced_reynolds']:.3g}"
+                f" s), past Re* = {corrected['measured_to_reduced_reynolds']:g}, the largest at which the "
+                "correction was compared with Navier-Stokes solutions") if beyond else ""
+        return (f"the inertia-corrected forces may be in error by up to {corrected['max_estimated_force_error']:.0%} "
+                f"(at t = {corrected['t_at_max_estimated_force_error']:.3g} s){past}")
+    if inertia.get("max_estimated_force_error", 0.0) <= WARN_FORCE_ERROR:
+        return ""
+    return (f"the quasi-steady Stokes forces may be in error by up to {inertia['max_estimated_force_error']:.0%} "
+            f"(at t = {inertia['t_at_max_estimated_force_error']:.3g} s; at the largest gap Reynolds number, "
+            f"Re* = {inertia['max_reduced_reynolds']:.2g} at t = {inertia['t_at_max_reduced_reynolds']:.3g} s, by "
+            f"{inertia['estimated_force_error_at_max_reduced_reynolds']:.0%}); model.inertia = 'first-order' adds "
+            "their first inertial correction, which leaves an error second order in Re* (estimated in the run's "
+            "'inertia' record)")

@@ -63,8 +63,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lubrication._jit import jit
 from lubrication.geometry import check_finite, check_range
+from numerics.jit import jit
 
 __all__ = [
     "EVENT_NAMES",
@@ -179,7 +179,7 @@ def initial_state(kappa0: float | None, phi0: float, omega_a0: float = 0.0, omeg
 def rhs_values(t, y, args):
     """:func:`rhs` as a tuple of five floats, for compiled callers: a tuple needs no allocation.
 
-    The engine (:func:`dynamics.engine.driver.solve`) takes either form; called
+    The engine (:func:`numerics.engine.driver.solve`) takes either form; called
     directly from compiled code, as the sweeps' batch loop does, the tuple saves
     an array's allocation and release at each of the about seven evaluations a step.
     """

@@ -64,7 +64,6 @@ from pathlib import Path
 from typing import Any
 
 from dynamics.apparatus import PRESETS, Apparatus
-from dynamics.keys import Key, field_key
 from dynamics.scenes.schema import (
     ALTERNATIVES,
     SECTIONS,
@@ -79,7 +78,8 @@ from dynamics.scenes.schema import (
     field_of,
     spec,
 )
-from dynamics.scenes.units import UnitError, to_si
+from numerics.keys import Key, field_key
+from numerics.units import UnitError, to_si
 
 __all__ = ["load_scene", "parse_scene", "resolved_toml"]
 
@@ -107,7 +107,7 @@ def _value(name: str, raw: Any, key: Key) -> Any:
     if key.none and raw == key.none:
         return None
     if key.choices:
-        if not isinstance(raw, str) or raw not in key.choices:
+        if not isinstance(raw, str) or raw not in key.options():
             msg = f"{name} must be {key.allowed()}, got {raw!r}"
             raise SceneError(msg)
         return raw

@@ -1,7 +1,7 @@
 """The scene schema: every section, every key, its unit, range and help, stated once.
 
-The sections are dataclasses whose fields carry a :class:`dynamics.keys.Key`
-(:func:`dynamics.keys.key`): the scene reader (:mod:`dynamics.scenes.load`)
+The sections are dataclasses whose fields carry a :class:`numerics.keys.Key`
+(:func:`numerics.keys.key`): the scene reader (:mod:`dynamics.scenes.load`)
 converts and checks TOML values with it, the dataclasses check themselves with
 it when built from Python, the resolved scene writes its help as comments, and
 the documentation's scene reference is generated from :data:`SECTIONS`. Keys a
@@ -18,20 +18,19 @@ import sys
 from dataclasses import dataclass, field
 
 from dynamics.apparatus import DENSITY, PRESETS, Apparatus
-from dynamics.equations.forces import ENDS
 from dynamics.equations.full import FRAME_TERMS
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
-from dynamics.keys import Key, check_fields, field_key, key
-from lubrication.reynolds import GRIDS, MAX_CELLS, MIN_CELLS
+from lubrication import registry
+from lubrication.reynolds import TRAJECTORY_CELLS
+from numerics.keys import Key, check_fields, field_key, key
 
 __all__ = [
     "ALTERNATIVES",
     "ALTERNATIVE_KEYS",
     "CAVITATION_MODELS",
     "EQUATIONS",
-    "FORCES",
     "SECTIONS",
     "Cavitation",
     "Contact",
@@ -46,7 +45,6 @@ __all__ = [
 ]
 
 EQUATIONS = ("full", "reduced", "auto")
-FORCES = ("closed-form", "reynolds", "stokes-exact", "stokes", "auto")
 CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
 
 _DEG = math.pi / 180.0
@@ -57,6 +55,11 @@ def _limit(name: str):
     """A field of Limits, with its default and its key, repeated in the run section."""
     f = Limits.__dataclass_fields__[name]
     return dataclasses.field(default=f.default, metadata=f.metadata)
+
+
+def _registered(default, rule: Key, **changes):
+    """A field carrying a key of the force-model registry (:mod:`lubrication.registry`), as scenes take it."""
+    return dataclasses.field(default=default, metadata={"key": dataclasses.replace(rule, **changes)})
 
 
 class SceneError(ValueError):
@@ -95,22 +98,20 @@ class Model:
 
     equations: str = key("full", help="'full' (2.1)-(2.4), 'reduced' (2.11), or 'auto' (the cheapest that "
                                       "meets model.tolerance)", choices=EQUATIONS)
-    forces: str = key("closed-form", help="'closed-form' (2.5)-(2.7), 'reynolds' (the Reynolds solver), "
-                                          "'stokes-exact' (exact 2-D Stokes; 'stokes' is the same) or 'auto'",
-                      choices=FORCES)
+    forces: str = key("stokes-exact", help="the full equations' force model: 'stokes-exact' (the exact 2-D Stokes "
+                                           "forces), 'closed-form' (the paper's (2.5)-(2.7)), 'reynolds' (the "
+                                           "Reynolds solver), any other registered model, or 'auto'",
+                      choices=lambda: (*registry.names(trajectories=True), "auto"))
     tolerance: float = key(0.01, help="relative error 'auto' may accept (measured)", low=0.0, high=1.0,
                            bounds="()")
-    n: int = key(16, help="Reynolds solver: cells around the gap (exact thin-gap forces from 8)",
-                 low=MIN_CELLS, high=MAX_CELLS, integer=True)
-    grid: str = key("sommerfeld", help="Reynolds solver: grid uniform in the Sommerfeld angle or in theta",
-                    choices=GRIDS)
-    ends: str = key("infinite", help="'infinite': per unit length of an infinitely long annulus; 'open': the gap "
-                                     "opens into end regions at z = +-L/2 (finite-length factors on the closed "
-                                     "forms or the exact Stokes forces)", choices=ENDS)
-    inertia: str = key("none", help="full equations, closed-form or stokes-exact forces: 'first-order' adds the "
-                                    "first inertial correction of the flow relative to the line of centres "
-                                    "(docs/inertia: the error left is second order in Re*)",
-                       choices=("none", "first-order"))
+    n: int = _registered(TRAJECTORY_CELLS, registry.get("reynolds").options["n"],
+                         help="Reynolds solver: cells around the gap (exact thin-gap forces from 8)")
+    grid: str = _registered("sommerfeld", registry.get("reynolds").options["grid"])
+    ends: str = _registered("infinite", registry.option_keys(compositions_only=True)["ends"],
+                            help="'infinite': per unit length of an infinitely long annulus; 'open': the gap opens "
+                                 "into end regions at z = +-L/2 (finite-length factors on the linear models)",
+                            choices=("infinite", "open"))
+    inertia: str = _registered("none", registry.option_keys(compositions_only=True)["inertia"])
     frame_terms: str = key("paper", help="full equations: 'paper' is (2.1)-(2.2) as printed; 'quasi-steady' "
                                          "carries m'_a, not m_eff, on the centripetal and Coriolis terms, as a "
                                          "fluid turning with the line of centres requires", choices=FRAME_TERMS)

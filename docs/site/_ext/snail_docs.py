@@ -257,7 +257,7 @@ class CliDirective(_Generated):
     def lines(self) -> list[str]:
         from dynamics.app import cli
 
-        self.depends_on("dynamics.app.cli", "dynamics.app.sweeps.cli", "validation.cli", "validation.corrections")
+        self.depends_on("dynamics.app.cli", "dynamics.app.commands.forces", "dynamics.app.commands.run", "dynamics.app.commands.sweep", "validation.cli", "validation.corrections")
         parser = cli.build_parser()
         if not self.arguments:
             return cli_lines(parser, "snail")
@@ -374,9 +374,38 @@ class SceneReferenceDirective(_Generated):
     """``.. snail-scene-reference::``: a table per scene section, from the schema."""
 
     def lines(self) -> list[str]:
-        self.depends_on("dynamics.scenes.schema", "dynamics.keys", "dynamics.apparatus", "dynamics.initial",
+        self.depends_on("dynamics.scenes.schema", "numerics.keys", "dynamics.apparatus", "dynamics.initial",
                         "dynamics.equations.limits")
         return scene_lines()
+
+
+def force_model_lines() -> list[str]:
+    """reST of the force-model registry (:mod:`lubrication.registry`): every model, its options, the compositions."""
+    from lubrication import registry
+
+    lines = [".. list-table::", "   :header-rows: 1", "   :widths: 14 46 40", "",
+             "   * - model", "     - what it computes", "     - its own options"]
+    for name in registry.names():
+        spec = registry.get(name)
+        options = "; ".join(f"{_literal(k)}: {rst_escape(key.help)}, {rst_escape(key.allowed())}"
+                            for k, key in spec.options.items()) or "none"
+        where = " In trajectories: " + _literal(spec.in_trajectories) + "." if spec.in_trajectories else ""
+        needs = f" Needs the {_literal(spec.extra)} extra." if spec.extra else ""
+        lines += [f"   * - {_literal(name)}", f"     - {rst_escape(spec.summary)}.{where}{needs}", f"     - {options}"]
+    lines += ["", "The compositions, options any model may take where its rule allows:", "",
+              ".. list-table::", "   :header-rows: 1", "   :widths: 20 80", "", "   * - option", "     - meaning"]
+    for key_name, key in registry.option_keys(compositions_only=True).items():
+        lines += [f"   * - {_literal(key_name)}", f"     - {rst_escape(key.help)}, {rst_escape(key.allowed())}"]
+    return [*lines, ""]
+
+
+class ForceModelReferenceDirective(_Generated):
+    """``.. snail-force-models::``: the registered force models and the compositions, from the registry."""
+
+    def lines(self) -> list[str]:
+        self.depends_on("lubrication.registry", "lubrication.spec", "lubrication.closed_form", "lubrication.film",
+                        "lubrication.stokes_exact", "lubrication.stokes", "numerics.keys")
+        return force_model_lines()
 
 
 # -- the API reference -------------------------------------------------------------------------------------
@@ -518,9 +547,9 @@ def api_page(name: str, documented: list[str]) -> str:
 def register_aliases(app, env) -> list[str]:
     """Make every name a documented module imports resolve to where it is documented.
 
-    A docstring's ``:class:`Resistance``` in :mod:`lubrication.forces` means the
+    A docstring's ``:class:`Resistance``` in :mod:`lubrication.registry` means the
     ``Resistance`` that module imports; Python finds it there, and so does Sphinx
-    with these aliases (``lubrication.forces.Resistance`` -> ``lubrication.geometry.Resistance``,
+    with these aliases (``lubrication.geometry.Resistance`` -> ``lubrication.geometry.Resistance``,
     members included). A class's attributes that have no entry of their own (a
     dataclass's fields, described in its Attributes section; what ``__init__``
     assigns) resolve to the class.
@@ -688,6 +717,7 @@ def setup(app):
     app.add_config_value("snail_api_groups", [], "env")
     app.add_directive("snail-cli", CliDirective)
     app.add_directive("snail-scene-reference", SceneReferenceDirective)
+    app.add_directive("snail-force-models", ForceModelReferenceDirective)
     app.add_directive("snail-api-index", ApiIndexDirective)
     app.connect("builder-inited", write_api_pages)
     app.connect("builder-inited", rerun_unexecuted_examples, priority=400)  # before sphinx-gallery's

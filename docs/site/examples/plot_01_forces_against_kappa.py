@@ -20,15 +20,15 @@ apparatus, delta/a = 0.40625, for kappa from 0 to 0.99:
 import matplotlib.pyplot as plt
 import numpy as np
 
-from dynamics.equations.forces import closed_form
 from lubrication import Annulus, Fluid, Motion, resistance
 from lubrication.geometry import RESISTANCE_NAMES
+from lubrication.registry import kernel_model
 
 a, b, length = 0.008, 0.01125, 0.1035  # m: Table 2 of the paper
 fluid = Fluid(nu=2e-4, rho=1000.0)  # 200 cSt
 kappas = np.linspace(0.02, 0.99, 60)  # f_chi vanishes at kappa = 0: its ratio is a limit there
 
-open_ends = closed_form(ends="open", length_over_a=length / a)
+open_ends = kernel_model("closed-form", ends="open", length_over_a=length / a)
 
 
 def open_ends_resistance(annulus):

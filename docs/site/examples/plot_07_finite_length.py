@@ -13,7 +13,7 @@ The factors F = (coefficient of the finite annulus) / (L x coefficient per unit
 length) come from the Reynolds equation on (theta, z)
 (:mod:`lubrication.reynolds2d`); a Chebyshev table of them serves the
 equations of motion (``ends = "open"`` in a scene, or
-``force_model("closed-form", ends="open", length_over_a=L/a)``). Here the table
+``kernel_model("closed-form", ends="open", length_over_a=L/a)``). Here the table
 is drawn for several lengths, checked against direct (theta, z) solves at the
 apparatus' length, and a trajectory of the default scene is run with both ends.
 """
@@ -22,7 +22,6 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from dynamics import Initial, Limits, preset
-from dynamics.equations.forces import force_model
 from dynamics.simulation import simulate
 from lubrication.finite_length import (
     APPARATUS_LENGTH_OVER_A,
@@ -30,6 +29,7 @@ from lubrication.finite_length import (
     small_eccentricity_factor,
     table_factors,
 )
+from lubrication.registry import kernel_model
 
 kappas = np.linspace(0.0, 0.99, 100)
 fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True, layout="constrained")
@@ -66,7 +66,7 @@ for k, d in zip(check, direct):
 # weaken the squeeze film, so the inner cylinder reaches the wall sooner.
 steel = preset("steel", nu=2e-4)
 runs = {ends: simulate(steel, Initial(kappa=0.5, phi=0.5), 10.0, limits=Limits(on_invalid="warn"),
-                       forces=force_model("closed-form", ends=ends, length_over_a=steel.length / steel.a))
+                       forces=kernel_model("closed-form", ends=ends, length_over_a=steel.length / steel.a))
         for ends in ("infinite", "open")}
 fig2, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained")
 for ends, run in runs.items():

@@ -20,10 +20,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from dynamics import Initial, Limits, preset
-from dynamics.equations.forces import reynolds
 from dynamics.simulation import simulate
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import cavitating_pressure
+from lubrication.registry import kernel_model
 
 p_ref = 101325.0  # Pa, at the widest gap
 margin = 3.0  # Pa: p_ref - p_cav
@@ -56,7 +56,7 @@ steel = preset("steel", nu=2e-4)
 fig2, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 3.8), layout="constrained")
 for model in ("none", "half-sommerfeld", "swift-stieber", "jfo"):
     options = {} if model == "none" else {"cavitation": model, "p_cav": p_ref - 100.0, "p_ref": p_ref}
-    run = simulate(steel, Initial(kappa=0.5, phi=0.5), 20.0, forces=reynolds(n=64, **options), rtol=1e-6,
+    run = simulate(steel, Initial(kappa=0.5, phi=0.5), 20.0, forces=kernel_model("reynolds", n=64, **options), rtol=1e-6,
                    limits=Limits(on_invalid="warn"))
     c = run.columns
     ax1.loglog(c["t"][1:], c["one_minus_kappa"][1:], label=model)

@@ -37,10 +37,10 @@ import numpy as np
 from dynamics.app.sweeps.compiled import integrate_points
 from dynamics.app.sweeps.point import classify_point, run_point
 from dynamics.app.sweeps.spec import point_key
-from dynamics.engine import EVENT, REACHED_END, TERMINAL_EVENT
 from dynamics.equations import reduced
 from dynamics.equations.limits import LIMIT_EVENTS
 from dynamics.scenes import parse_scene
+from numerics.engine import EVENT, REACHED_END, TERMINAL_EVENT
 
 __all__ = ["DIRECTION", "Problem", "problem", "run_batch"]
 

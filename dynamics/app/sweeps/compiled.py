@@ -1,7 +1,7 @@
 """The compiled loop of the sweeps' batch runner: many runs of the reduced equations (2.11) in one call.
 
 :func:`integrate_points` integrates point after point with the engine's driver
-(:func:`dynamics.engine.driver.solve`) called directly on the reduced model's
+(:func:`numerics.engine.driver.solve`) called directly on the reduced model's
 :func:`~dynamics.equations.reduced.rhs_values`, :func:`~dynamics.equations.reduced.jacobian`
 and :func:`~dynamics.equations.reduced.event_values`, compiled into the loop: no Python
 per step or per point, no calls through function pointers, and the right-hand side
@@ -33,11 +33,11 @@ import numpy as np
 from numba import objmode, types
 from numba.typed import List
 
-from dynamics import engine
-from dynamics.engine.driver import solve
-from dynamics.engine.state import STATUS, STEPS, STOP_EVENT
 from dynamics.equations import reduced
-from lubrication._jit import jit
+from numerics import engine
+from numerics.engine.driver import solve
+from numerics.engine.state import STATUS, STEPS, STOP_EVENT
+from numerics.jit import jit
 
 __all__ = ["RAISED", "integrate_points", "warm"]
 
@@ -124,7 +124,7 @@ def warm():
 def integrate_points(y0, args, t_end, rtol, terminal, direction) -> tuple:
     """Integrate point i of the reduced equations from ``y0[i]`` over [0, ``t_end[i]``] with ``args[i]``.
 
-    Each run is :func:`dynamics.engine.driver.solve` from t = 0 with
+    Each run is :func:`numerics.engine.driver.solve` from t = 0 with
     atol = rtol, the first step chosen by the driver, at most 2,000,000 steps,
     and one output row per step.
 
@@ -136,14 +136,14 @@ def integrate_points(y0, args, t_end, rtol, terminal, direction) -> tuple:
         :func:`dynamics.equations.reduced.run_args` of each point.
     t_end, rtol : ndarray, shape (points,)
     terminal : ndarray of int, shape (points, 5)
-        Per point and event, as :func:`dynamics.engine.driver.init` takes it.
+        Per point and event, as :func:`numerics.engine.driver.init` takes it.
     direction : ndarray of int, shape (5,)
         Per event, the same for every point.
 
     Returns
     -------
     runs : list of (t, y, kind, event)
-        Each run's rows, as :func:`dynamics.engine.driver.advance` returns them (none if it raised).
+        Each run's rows, as :func:`numerics.engine.driver.advance` returns them (none if it raised).
     status, stop_event, steps : ndarray of int, shape (points,)
         The driver's status code (:data:`RAISED` if the run raised), the index of the
         event that stopped the run (-1 if none), and the accepted steps.

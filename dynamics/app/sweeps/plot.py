@@ -134,7 +134,7 @@ def save_regime_map(sweep: Sweep, csv_path: str | os.PathLike) -> Path | None:
     Path or None
         The figure's path; None (nothing drawn) without two such axes.
     """
-    from lubrication.files import save_figure
+    from numerics.files import save_figure
 
     csv_path = Path(csv_path)
     rows = read_rows(csv_path)

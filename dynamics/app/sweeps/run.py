@@ -29,9 +29,16 @@ from pathlib import Path
 from dynamics.app.sweeps.batch import problem, run_batch
 from dynamics.app.sweeps.compiled import warm
 from dynamics.app.sweeps.spec import Sweep, SweepError, point_key
-from dynamics.app.sweeps.store import CSV_NAME, MANIFEST_NAME, Table, check_manifest, read_rows
+from dynamics.app.sweeps.store import (
+    CSV_NAME,
+    MANIFEST_NAME,
+    Table,
+    check_manifest,
+    read_rows,
+)
 from dynamics.scenes import parse_scene
-from lubrication.files import write_json
+from numerics.files import write_json
+from numerics.jit import compile_watch
 
 __all__ = ["BATCHES_PER_WORKER", "MAX_BATCH", "SweepResult", "max_workers", "run_sweep"]
 
@@ -125,17 +132,19 @@ def _client(scheduler: str | None, workers: int):
     return Client(cluster), cluster
 
 
-def _progress_bar(total: int, initial: int):
-    """A tqdm bar of points on a terminal, refreshed at most once a second; None when piped."""
-    if not sys.stderr.isatty():
+def _progress_bar(total: int, initial: int, progress: bool | None):
+    """A bar of points refreshed at most once a second (tqdm's, a widget in a notebook): with ``progress``
+    True, or None on a terminal; no bar when False or piped."""
+    if not (progress if progress is not None else sys.stderr.isatty()):
         return None
-    from tqdm import tqdm
+    from tqdm.auto import tqdm
 
     return tqdm(total=total, initial=initial, desc="snail sweep", unit="pt", mininterval=1.0)
 
 
 def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None = None, workers: int = 2,
-              batch_size: int | None = None, max_points: int | None = None) -> SweepResult:
+              batch_size: int | None = None, max_points: int | None = None,
+              progress: bool | None = None, say=None) -> SweepResult:
     """Run the points of ``sweep`` that ``outdir/sweep.csv`` lacks, appending a row as each arrives.
 
     Parameters
@@ -154,6 +163,11 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
         Points per dask task; by default about 8 tasks per worker, at most :data:`MAX_BATCH` points.
     max_points : int, optional
         Stop after this many new points (whole batches are finished), to run a sweep in parts.
+    progress : bool, optional
+        A bar of the points done: True (a widget in a notebook), False, or by default on a terminal only.
+        The stages before the first point (starting the cluster, compiling) are said on the bar.
+    say : callable, optional
+        ``say(text)`` is called with each stage as it begins (the command line writes them to standard error).
 
     Returns
     -------
@@ -187,7 +201,18 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
                 len(points) - len(missing), csv_path, len(todo))
     computed, compute_time, n_workers = 0, 0.0, 0
     with contextlib.ExitStack() as stack:
+        bar = _progress_bar(len(points), len(points) - len(missing), progress) if todo else None
+        if bar is not None:
+            stack.callback(bar.close)
+
+        def stage(text: str) -> None:
+            if bar is not None:
+                bar.set_description(f"snail sweep: {text}")
+            if say is not None:
+                say(text)
+
         if todo:  # the cluster before any file: a scheduler that cannot be reached leaves the folder untouched
+            stage(f"connecting to {scheduler}" if scheduler else f"starting {workers} workers")
             client, cluster = _client(scheduler, workers)
             stack.callback(client.close)
             if cluster is not None:
@@ -199,11 +224,11 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
         write_json(manifest_path, manifest)
         table = stack.enter_context(Table(csv_path, sweep.keys))
         if todo:
-            _warm_batch(sweep, todo[0])
+            with compile_watch(on_first=lambda _: stage("compiling the batch runner (first run after an install or "
+                                                        "an edit only; a minute or two)")):
+                _warm_batch(sweep, todo[0])
             n_workers = len(client.scheduler_info()["workers"]) or workers
-            bar = _progress_bar(len(points), len(points) - len(missing))
-            if bar is not None:
-                stack.callback(bar.close)
+            stage(f"{len(todo)} points on {n_workers} workers")
             compute_start = time.perf_counter()
             futures = [client.submit(run_batch, sweep.base, sweep.source, batch, pure=False)
                        for batch in _batches(todo, n_workers, batch_size)]

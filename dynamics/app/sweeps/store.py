@@ -21,9 +21,10 @@ from pathlib import Path
 from typing import Any
 
 from dynamics.app.sweeps.spec import Sweep, SweepError
-from lubrication.files import write_text
+from numerics.files import write_text
 
-__all__ = ["CSV_NAME", "MANIFEST_NAME", "NUMBERS", "Table", "check_manifest", "read_rows"]
+__all__ = ["CSV_NAME", "MANIFEST_NAME", "NUMBERS", "TEXT", "Table", "check_manifest", "read_rows", "read_table",
+           "to_pandas"]
 
 CSV_NAME = "sweep.csv"
 MANIFEST_NAME = "sweep.json"
@@ -63,6 +64,37 @@ def read_rows(path: str | os.PathLike) -> list[dict[str, str]]:
     if not text.endswith("\n"):
         text = text[:text.rfind("\n") + 1]
     return list(csv.DictReader(text.splitlines()))
+
+
+#: The columns of :data:`NUMBERS` that hold text.
+TEXT = ("status", "regime", "stop_event", "reason", "point")
+
+
+def _value(name: str, text: str):
+    """A cell of sweep.csv as what it means: text for :data:`TEXT`, an int for ``steps``, else a number
+    (an axis value given as a string with units, "2.4 deg", stays a string)."""
+    if name in TEXT:
+        return text
+    if name == "steps":
+        return int(text) if text else None
+    try:
+        return float(text) if text else None
+    except ValueError:
+        return text
+
+
+def read_table(path: str | os.PathLike) -> list[dict[str, Any]]:
+    """The complete rows of a ``sweep.csv`` with numbers as numbers (:func:`read_rows` keeps the text)."""
+    return [{k: _value(k, v) for k, v in row.items()} for row in read_rows(path)]
+
+
+def to_pandas(path: str | os.PathLike):
+    """``sweep.csv`` as a pandas DataFrame, one row per point, numbers as numbers."""
+    try:
+        import pandas as pd
+    except ImportError as err:
+        raise ImportError("to_pandas needs pandas: pip install pandas") from err
+    return pd.DataFrame(read_table(path))
 
 
 class Table:

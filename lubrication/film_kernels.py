@@ -11,13 +11,14 @@ import math
 
 import numpy as np
 
-from ._cavitation_kernels import (
+from numerics.jit import jit
+
+from .cavitation_kernels import (
     _cell_coefficients,
     _film_integrals,
     half_sommerfeld_weights,
 )
-from ._jit import jit
-from ._kernels import N_INTEGRALS, THIN, cell_integrals
+from .reynolds_kernels import N_INTEGRALS, THIN, cell_integrals
 
 # How the film meets its reservoir: a liquid feed at the node opposite the narrowest gap
 # (the steady models' convention), or the end reservoirs and their trapped bubble.
@@ -238,7 +239,7 @@ def film_rates(a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, cpsi, spsi, vpsi
     kappa, omk, eps_dot, w_a, w_b : float
         Eccentricity, 1 - kappa, eps' (m/s), and the spins relative to the line of centres (rad/s).
     cpsi, spsi, vpsi, ppsi, wpsi, m
-        The Gauss rule of the cells (``lubrication.reynolds._psi_rule``).
+        The Gauss rule of the cells (``lubrication.reynolds.psi_rule``).
     faces, node_p
         As :func:`film_geometry`.
     gauge : int

@@ -7,8 +7,8 @@ factorisations, the event search and the output rows never return to Python.
 
 Use::
 
-    from lubrication._jit import jit
-    from dynamics.engine import integrate
+    from numerics.jit import jit
+    from numerics.engine import integrate
 
     @jit
     def rhs(t, y, args):                 # -> float64 array (n,)
@@ -29,7 +29,7 @@ Compilation. The model's functions reach the driver as first-class functions,
 typed by their signature, not by their identity: the driver is compiled once per
 numba type of ``args`` (float64 array, or a tuple of floats and arrays, ...),
 for every model at once, and kept in numba's disk cache
-(:mod:`dynamics.engine.compiled`). A model's first run compiles only its own
+(:mod:`numerics.engine.compiled`). A model's first run compiles only its own
 functions. Give all models the same type of ``args`` to share one driver.
 
 Modules, one concept each, in the order a step uses them:

@@ -3,7 +3,7 @@ r"""numba kernels of the Reynolds solver on (theta, z); the formulation is in :m
 Unknown: phi = (p - p_end)/(12 mu a) at the nodes (xi_j, z_k) of a tensor grid,
 xi uniform and periodic and mapped to the Sommerfeld angle psi of the grid
 parameter (:mod:`lubrication.reynolds2d`), z in units of a. The cells are those
-of :mod:`lubrication._kernels`, their quadrature weights in psi carrying dpsi/dxi
+of :mod:`lubrication.reynolds_kernels`, their quadrature weights in psi carrying dpsi/dxi
 (``stretch``). The discrete equations are
 
     (M_z (x) L_theta + K_z (x) M_theta) phi = -(w_z (x) r)
@@ -23,13 +23,14 @@ import math
 
 import numpy as np
 
-from ._cavitation_kernels import (
+from numerics.jit import jit
+
+from .cavitation_kernels import (
     _cell_coefficients,
     _film_integrals,
     half_sommerfeld_weights,
 )
-from ._jit import jit
-from ._kernels import (
+from .reynolds_kernels import (
     ECCENTRIC,
     H2,
     H3,
@@ -57,7 +58,7 @@ def cell_masses(kind, a, b, kappa, omk, kappa_g, omk_g, cpsi, spsi, vpsi, ppsi, 
                 lower1, m, h_tab, out):
     """Add to ``out[j]`` the integrals of h^3 over cell j listed by the column constants above.
 
-    Arguments as :func:`lubrication._kernels.cell_integrals`, whose weights
+    Arguments as :func:`lubrication.reynolds_kernels.cell_integrals`, whose weights
     ``wpsi`` are in psi; ``stretch`` (shape (N m,)) is dpsi/dxi at the points, the
     cells being uniform in xi. ``tpos`` (shape (m,)) holds the Gauss points'
     positions in [0, 1] within a cell, linear in xi, and ``lower0``, ``lower1``
@@ -235,7 +236,7 @@ def _jump_sums(integrals, jumps):
     """d(oint phi' sin, oint phi' omega, torque sum) per unit jumps, contracted with ``jumps``.
 
     In cell j the flux constant is c_j = ((U/2) A_j + B_j - jump_j)/G_j
-    (:func:`lubrication._cavitation_kernels._film_integrals`), so every line
+    (:func:`lubrication.cavitation_kernels._film_integrals`), so every line
     integral is its value at zero jumps plus sum_j jump_j (SH3_j, OH3_j, -6 H2_j)/G_j.
     """
     s_sin = s_chi = s_torque = 0.0
@@ -302,7 +303,7 @@ def modal_film(integrals, masses, u_a, u_b, lam, coef, half_length, end_weight, 
     Parameters
     ----------
     integrals : ndarray, shape (N, N_INTEGRALS)
-        Cell integrals of the line (:func:`lubrication._kernels.cell_integrals`).
+        Cell integrals of the line (:func:`lubrication.reynolds_kernels.cell_integrals`).
     masses : ndarray, shape (N, N_MASSES)
         Cell integrals of h^3 (:func:`cell_masses`).
     u_a, u_b : float
@@ -321,7 +322,7 @@ def modal_film(integrals, masses, u_a, u_b, lam, coef, half_length, end_weight, 
     -------
     i_sin, i_chi, i_torque : float
         int dz of oint phi' sin, oint phi' omega and oint [(u_b - u_a)/h - 6 phi' h]
-        (z in units of a), as :func:`lubrication._kernels.full_film` per line.
+        (z in units of a), as :func:`lubrication.reynolds_kernels.full_film` per line.
     """
     n = integrals.shape[0]
     half_u = 0.5 * (u_a + u_b)
@@ -522,7 +523,7 @@ def modal_forces(kind, a, b, mu, kappa, omk, eps_dot, w_a, w_b, kappa_g, omk_g,
     For the thin and the eccentric gap; ``lam``, ``coef``, ``half_length`` and
     ``end_weight`` describe the z-modes of the half length 0 <= z <= L/2 in
     units of a (:func:`modal_film`), and the mid-plane symmetry doubles the
-    result. Scaled as :func:`lubrication._kernels.film_forces`, with dz = a dz_hat.
+    result. Scaled as :func:`lubrication.reynolds_kernels.film_forces`, with dz = a dz_hat.
     """
     n = spsi.size // m
     empty = np.empty((1, 0))

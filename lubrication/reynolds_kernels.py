@@ -57,7 +57,7 @@ import math
 
 import numpy as np
 
-from ._jit import jit
+from numerics.jit import jit
 
 # Gap profiles known to the kernel; TABULATED takes h and Q from arrays.
 THIN, ECCENTRIC, TABULATED = 0, 1, 2

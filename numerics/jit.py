@@ -10,26 +10,37 @@ first-class function, as the engine makes, cannot pass on: the process went on
 with undefined state and crashed). ``NUMBA_DISABLE_JIT=1`` runs every kernel as
 plain Python, for coverage and debugging.
 
-The disk cache is keyed on every source of the packages ``dynamics`` and
-``lubrication`` (:func:`project_stamp`), not only on the kernel's own file as
-numba keys it: a kernel carries the code of the kernels it calls from other
-modules and the values of their constants, so an edit to any of them must
-compile it anew rather than load code that no longer matches the sources. Any
-edit to the two packages therefore recompiles their kernels on the next run.
+The disk cache of a package's kernels is keyed on every source of that package
+and of the packages below it (:func:`stamp_kernels`, which each package calls),
+not only on the kernel's own file as numba keys it: a kernel carries the code of
+the kernels it calls from other modules and the values of their constants, so an
+edit to any of them must compile it anew rather than load code that no longer
+matches the sources. An edit to a package therefore recompiles its kernels and
+those of the packages above it on the next run. This module names no package.
 """
 
 from __future__ import annotations
 
-import functools
+import contextlib
 import hashlib
-import os
+import time
 import types
 from pathlib import Path
 
 from numba import njit
-from numba.core import caching
+from numba.core import caching, event
 
-__all__ = ["JIT_OPTIONS", "jit", "project_stamp", "sources_hash", "sources_stamp", "specialise"]
+from numerics.stamps import (
+    package_stamp,
+    roots_of,
+    sources_stamp,
+    stamp,
+    stamp_kernels,
+    stamped_roots,
+)
+
+__all__ = ["JIT_OPTIONS", "CompileWatch", "compile_watch", "jit", "package_stamp", "sources_hash", "sources_stamp", "specialise", "stamp_kernels",
+           "stamped_roots"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
 JIT_OPTIONS = {"cache": True, "nogil": True, "fastmath": False, "error_model": "numpy"}
@@ -76,7 +87,7 @@ def sources_hash(*paths: Path) -> str:
     numba by itself checks only the source file of a function it loads from its
     cache, not of the code compiled into it: a :func:`specialise` copy named with
     the hash of every source it carries is compiled anew when any of them changes,
-    also where this numba's caching leaves :func:`project_stamp` out.
+    also where this numba's caching leaves the sources stamp of :func:`stamp_kernels` out.
     """
     digest = hashlib.sha256()
     for path in paths:
@@ -84,44 +95,21 @@ def sources_hash(*paths: Path) -> str:
     return digest.hexdigest()[:12]
 
 
-#: The packages whose compiled code calls into one another; they are installed side by side.
-PACKAGES = ("dynamics", "lubrication")
-_ROOTS = tuple(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), name) for name in PACKAGES)
-
-
-def sources_stamp(*packages) -> str:
-    """The sha256 of every ``*.py`` file under the folders ``packages``: relative paths and contents, in path order."""
-    digest = hashlib.sha256()
-    for package in map(os.fspath, packages):
-        base, paths = os.path.dirname(package), []
-        for folder, subfolders, names in os.walk(package):
-            subfolders[:] = [d for d in subfolders if d != "__pycache__"]  # numba's cache files: hundreds
-            paths += [os.path.join(folder, name) for name in names if name.endswith(".py")]
-        for path in sorted(paths):
-            digest.update(os.path.relpath(path, base).replace(os.sep, "/").encode() + b"\0")
-            with open(path, "rb") as source:
-                digest.update(source.read())
-    return digest.hexdigest()
-
-
-@functools.cache
-def project_stamp() -> str:
-    """:func:`sources_stamp` of :data:`PACKAGES` as this process found them: the key of their kernels' cache."""
-    return sources_stamp(*_ROOTS)
-
-
-class _ProjectStamped:
-    """A numba cache locator for the kernels of :data:`PACKAGES`: the cache is keyed on :func:`project_stamp`."""
+class _SourcesStamped:
+    """A numba cache locator for the kernels of the packages of :func:`stamp_kernels`, keyed on their sources."""
 
     @classmethod
     def from_function(cls, py_func, py_file):
-        path = os.path.abspath(py_file)
-        if not any(path.startswith(root + os.sep) for root in _ROOTS):
-            return None  # not ours: numba's own locators take it
-        return super().from_function(py_func, py_file)
+        roots = roots_of(py_file)
+        if roots is None:
+            return None  # not a registered package's: numba's own locators take it
+        locator = super().from_function(py_func, py_file)
+        if locator is not None:
+            locator.stamped_roots = roots
+        return locator
 
     def get_source_stamp(self):
-        return project_stamp()
+        return stamp(self.stamped_roots)
 
 
 def _install_locators() -> bool:
@@ -136,9 +124,39 @@ def _install_locators() -> bool:
     classes = getattr(impl, "_locator_classes", None)
     if not isinstance(classes, list) or None in bases:
         return False
-    if not any(issubclass(c, _ProjectStamped) for c in classes):
-        classes[:0] = [type(f"Project{name}", (_ProjectStamped, base), {}) for name, base in zip(names, bases)]
+    if not any(issubclass(c, _SourcesStamped) for c in classes):
+        classes[:0] = [type(f"Stamped{name}", (_SourcesStamped, base), {}) for name, base in zip(names, bases)]
     return True
 
 
 LOCATORS_INSTALLED = _install_locators()
+
+
+class CompileWatch(event.Listener):
+    """Seconds numba spends compiling (cache misses; loading from the cache is not compiling), and a
+    callback at the first compile. Compiles nested in another (a callee compiled with its caller) count once.
+    """
+
+    def __init__(self, on_first=None):
+        self.compile_s, self.compiled, self._depth, self._start, self._on_first = 0.0, 0, 0, 0.0, on_first
+
+    def on_start(self, ev):
+        if self._depth == 0:
+            if self.compiled == 0 and self._on_first is not None:
+                self._on_first(ev)
+            self._start = time.perf_counter()
+        self._depth += 1
+
+    def on_end(self, ev):
+        self._depth -= 1
+        if self._depth == 0:
+            self.compile_s += time.perf_counter() - self._start
+            self.compiled += 1
+
+
+@contextlib.contextmanager
+def compile_watch(on_first=None):
+    """A :class:`CompileWatch` listening to numba's compiles inside the block (``on_first(event)`` at the first)."""
+    watch = CompileWatch(on_first)
+    with event.install_listener("numba:compile", watch):
+        yield watch

@@ -1,7 +1,7 @@
 """The Python face of the engine: checked inputs, a run in chunks, and a result like scipy's.
 
 :func:`integrate` checks the inputs (:func:`check_inputs`), takes the driver
-compiled for the type of ``args`` (:func:`dynamics.engine.compiled.engine_for`),
+compiled for the type of ``args`` (:func:`numerics.engine.compiled.engine_for`),
 and runs it in chunks of ``chunk_steps`` steps, between which it reports progress
 and notices Ctrl-C; chunks do not change the result.
 """

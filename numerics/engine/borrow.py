@@ -12,7 +12,7 @@ are kept out of the loop's references likewise).
 :func:`borrow` returns views of the same memory with no owner (a null
 ``meminfo``): numba's increments and decrements of them are no-ops. The views
 are valid only while the arrays they come from are alive, so the loop borrows
-the :class:`~dynamics.engine.state.State` it was handed, which its caller keeps,
+the :class:`~numerics.engine.state.State` it was handed, which its caller keeps,
 and never lets a borrowed array escape: rows and results are copied out.
 """
 

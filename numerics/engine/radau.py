@@ -59,7 +59,7 @@ import math
 
 import numpy as np
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 from .linalg import lu_factor, lu_solve
 from .state import (

@@ -33,7 +33,7 @@ the Newton starting guess of the next step); ``jac`` (n, n); ``lu_real``,
 
 ``work`` (a :class:`Work`) holds the scratch arrays of the loop, whose contents
 do not outlive a step. The state owns them so that the loop, which steps with
-borrowed views of the state's arrays (:mod:`dynamics.engine.borrow`), owns no
+borrowed views of the state's arrays (:mod:`numerics.engine.borrow`), owns no
 memory of its own.
 """
 
@@ -43,7 +43,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 __all__ = [
     "CURRENT_JAC",
@@ -87,7 +87,7 @@ State = namedtuple("State", [
     "lu_complex", "piv_complex", "atol", "t_eval", "g", "event_count", "terminal", "direction", "work",
 ])
 
-#: Scratch of the loop. Of a step (:func:`dynamics.engine.radau.step`): the stage
+#: Scratch of the loop. Of a step (:func:`numerics.engine.radau.step`): the stage
 #: quantities ``Z0`` (Newton's starting guess), ``Z``, ``W``, ``F``, ``dW`` (3, n) and
 #: ``weight``, ``y_new``, ``f_new``, ``err``, ``ze``, ``y_stage``, ``b_real`` (n,),
 #: ``b_complex`` (n,) complex. Of the events and output: ``y_dense``, ``y_event`` (n,),

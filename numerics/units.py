@@ -3,7 +3,7 @@
 Importing pint and building its registry takes about a second, which a run given
 only plain SI numbers should not pay, so both happen when the first string with
 units is read; pint keeps its parsed definitions in the project's cache folder
-(:func:`lubrication.files.cache_folder`), which cuts the registry's build from
+(:func:`numerics.files.cache_folder`), which cuts the registry's build from
 0.45 s to 0.1 s after the first time.
 
 Even then pint's import costs 0.15-0.2 s, a tenth of a warm ``snail run``. So
@@ -31,7 +31,7 @@ class UnitError(ValueError):
 def _registry():
     import pint
 
-    from lubrication.files import cache_folder
+    from numerics.files import cache_folder
 
     # Decimal magnitudes: decimal unit factors (cSt, g/cm^3) convert exactly, where
     # binary floats would give 200 cSt = 2.0000000000000004e-4 m^2/s.
@@ -39,7 +39,7 @@ def _registry():
 
 
 def _memo_path():
-    from lubrication.files import cache_folder
+    from numerics.files import cache_folder
 
     return cache_folder() / "units.json"
 
@@ -56,7 +56,7 @@ def _memo() -> dict:
 
 
 def _remember(key: str, value: float) -> None:
-    from lubrication.files import write_json
+    from numerics.files import write_json
 
     if not math.isfinite(value):  # JSON has no inf; such a quantity is read by pint each time
         return

@@ -1,6 +1,6 @@
 """numba kernels of the cavitating Reynolds solver; the formulation is in :mod:`lubrication.cavitation`.
 
-They work on the cell integrals of :func:`lubrication._kernels.cell_integrals`
+They work on the cell integrals of :func:`lubrication.reynolds_kernels.cell_integrals`
 and with phi = p/(12 mu a) measured from the reference pressure: y_j = phi_j - phi_ref,
 y_0 = 0 at the feed node, and the cavitation level y_cav = (p_cav - p_ref)/(12 mu a) <= 0.
 """
@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._jit import jit
-from ._kernels import (
+from numerics.jit import jit
+
+from .reynolds_kernels import (
     ECCENTRIC,
     H1,
     H2,
@@ -387,7 +388,7 @@ def cavitating_film(integrals, u_a, u_b, model, y_cav, max_iterations, y_out, fi
     Parameters
     ----------
     integrals : ndarray, shape (N, N_INTEGRALS)
-        From :func:`lubrication._kernels.cell_integrals`.
+        From :func:`lubrication.reynolds_kernels.cell_integrals`.
     u_a, u_b : float
         Wall speeds in the frame of the line of centres (m/s).
     model : int
@@ -403,7 +404,7 @@ def cavitating_film(integrals, u_a, u_b, model, y_cav, max_iterations, y_out, fi
     Returns
     -------
     i_sin, i_chi, i_torque : float
-        As :func:`lubrication._kernels.full_film`.
+        As :func:`lubrication.reynolds_kernels.full_film`.
     passes : int
         Active-set passes (0 when the full film does not cavitate); -1 if not converged.
     """
@@ -452,7 +453,7 @@ def cavitating_film_forces(kind, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b
                            model, p_cav, p_ref, p_out, film_out, r_out):
     """f_eps, f_chi (N) and T_a (N m) of a cavitating film over the length, and the active-set passes.
 
-    The arguments up to ``sin_c`` are those of :func:`lubrication._kernels.film_forces`.
+    The arguments up to ``sin_c`` are those of :func:`lubrication.reynolds_kernels.film_forces`.
     ``p_out`` (Pa, absolute), ``film_out`` and ``r_out`` (m^2/s per unit length,
     :func:`balance`) have shape (N,). If the active set does not settle, the forces are NaN and
     the passes negative: an exception raised here would be lost in a compiled caller that holds

@@ -17,7 +17,7 @@ complex128 arrays: numba compiles a version per dtype.
 
 from __future__ import annotations
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 __all__ = ["lu_factor", "lu_solve"]
 

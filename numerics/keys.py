@@ -13,7 +13,7 @@ import dataclasses
 import functools
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 __all__ = ["Key", "check_fields", "field_key", "key"]
 
@@ -37,16 +37,20 @@ class Key:
     scale: float = 1.0  # SI value of one `unit`: pi/180 for angles shown in deg
     example: str = ""  # a string value the key accepts, for messages
     reduced_unit: str = ""  # unit in a dimensionless scene, where the value is a plain number
-    choices: tuple[str, ...] = ()  # the allowed strings of a choice
+    choices: tuple[str, ...] | Callable[[], tuple[str, ...]] = ()  # the allowed strings (or what lists them now)
     integer: bool = False  # an integer rather than a quantity
     none: str = ""  # a string that stands for "no value" (None), such as "none"
     section: str = ""  # the scene section of a field whose dataclass spans several
     toml: str = ""  # the scene's name for the field, when it differs from the field's
 
+    def options(self) -> tuple[str, ...]:
+        """The allowed strings of a choice, as they are now (a registry's may grow); () for a number."""
+        return tuple(self.choices()) if callable(self.choices) else self.choices
+
     def allowed(self) -> str:
         """The allowed values: "in [0, 1)", "in (0, inf) m" or "one of 'full', 'reduced'"."""
         if self.choices:
-            text = "one of " + ", ".join(repr(c) for c in self.choices)
+            text = "one of " + ", ".join(repr(c) for c in self.options())
         else:
             number = str if self.integer else "{:g}".format
             low = "-inf" if self.low == -math.inf else number(self.low)
@@ -80,7 +84,7 @@ class Key:
         if value is None and self.none:
             return None
         if self.choices:
-            if not isinstance(value, str) or value not in self.choices:
+            if not isinstance(value, str) or value not in self.options():
                 msg = f"{name} must be {self.allowed()}, got {value!r}"
                 raise ValueError(msg)
             return value

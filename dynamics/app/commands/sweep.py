@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import sys
+
+from dynamics.app.command import UsageError
 
 __all__ = ["register"]
 
@@ -40,7 +43,6 @@ def register(subparsers) -> None:
 
 
 def _run_sweep(args) -> int:
-    from dynamics.app.cli import UsageError
     from dynamics.app.sweeps.plot import save_regime_map
     from dynamics.app.sweeps.run import run_sweep
     from dynamics.app.sweeps.spec import SweepError, load_sweep
@@ -49,7 +51,9 @@ def _run_sweep(args) -> int:
     try:
         sweep = load_sweep(args.sweep)
         result = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
-                           max_points=args.max_points)
+                           max_points=args.max_points,
+                           say=None if sys.stderr.isatty() else lambda text: print(f"snail sweep: {text}",
+                                                                                   file=sys.stderr, flush=True))
     except (SweepError, SceneError, ImportError) as err:
         raise UsageError(str(err)) from err
     save_regime_map(sweep, result.csv_path)

@@ -32,7 +32,7 @@ from numba import types
 from numba.core.types.function_type import WrapperAddressProtocol
 from numba.extending import typeof_impl
 
-from lubrication._jit import sources_hash, specialise
+from numerics.jit import sources_hash, specialise
 
 from . import driver
 from .state import STATE_TYPE

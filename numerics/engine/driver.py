@@ -1,11 +1,11 @@
 """The integration loop: output rows, events, stop reasons, counts, pausing and resuming.
 
-:func:`init` sets up a :class:`~dynamics.engine.state.State` at (t0, y0);
-:func:`advance` takes Radau steps (:func:`dynamics.engine.radau.step`) from it
+:func:`init` sets up a :class:`~numerics.engine.state.State` at (t0, y0);
+:func:`advance` takes Radau steps (:func:`numerics.engine.radau.step`) from it
 until the run ends or ``chunk_steps`` steps are taken, and returns the output
 rows of those steps; :func:`solve` does both in one call. They take the model's
 ``fun``, ``jac`` and ``events`` as arguments. From Python, call them through
-:func:`dynamics.engine.compiled.engine_for`, compiled once for all models and
+:func:`numerics.engine.compiled.engine_for`, compiled once for all models and
 cached. Compiled code may call them directly,
 
     @jit
@@ -31,7 +31,7 @@ Events. Event i fires in a step (t_old, t_new] when g_i goes from negative to
 zero or positive (``direction`` >= 0) or from positive to zero or negative
 (``direction`` <= 0); so a g_i that is exactly zero at the start of a step cannot
 fire in it: not at t0, and not twice for a root that fell on a step's end. The
-root is found on the step's dense output (:mod:`dynamics.engine.roots`); events
+root is found on the step's dense output (:mod:`numerics.engine.roots`); events
 of one step are handled earliest first. Event i is terminal when ``terminal[i]``
 > 0: its ``terminal[i]``-th occurrence ends the run there, with the state at the
 event. (scipy's ``solve_ivp`` instead lets an event that starts at zero fire at
@@ -44,7 +44,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 from .borrow import borrow
 from .radau import (
@@ -286,7 +286,7 @@ def init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step
     -------
     State
         Status RUNNING, or NON_FINITE if f or J is not finite at (t0, y0).
-        The inputs are not checked here: :func:`dynamics.engine.check_inputs` does that.
+        The inputs are not checked here: :func:`numerics.engine.check_inputs` does that.
     """
     n = y0.shape[0]
     s = new_state(n, terminal.shape[0], t_eval)

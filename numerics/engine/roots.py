@@ -1,7 +1,7 @@
 """Where an event function crosses zero inside a step: Brent's method on the dense output.
 
 Within the last step [t_a, t_b] the solution is the step's collocation polynomial
-u(t) (:func:`dynamics.engine.radau.dense_eval`), so event i is the root of the scalar
+u(t) (:func:`numerics.engine.radau.dense_eval`), so event i is the root of the scalar
 function g_i(t) = events(t, u(t))[i], which changes sign over the step. Brent's
 method (R. P. Brent, *Algorithms for Minimization without Derivatives*, 1973,
 chapter 4) keeps a bracket [b, c] with g(b) g(c) <= 0 and b the better end, and
@@ -14,7 +14,7 @@ in t), or on an exact zero.
 
 from __future__ import annotations
 
-from lubrication._jit import jit
+from numerics.jit import jit
 
 from .radau import EPS, dense_eval, evaluate
 from .state import T

@@ -4,7 +4,7 @@ A contact run is a sequence of phases (free, sliding, locked). Each phase is a
 smooth system, a :class:`Phase`: compiled ``fun``, ``jac`` and ``events``
 (``f(t, y, args)``), its ``args`` and initial state, and what each event means.
 :func:`run_phases` integrates a phase until ``t_end`` or a terminal event, in
-one compiled call (:func:`dynamics.integrate.integrate`); an event whose name is
+one compiled call (:func:`numerics.integrate.integrate`); an event whose name is
 in :data:`SWITCHES` ends the phase and ``transition`` gives the next one from the
 state there; any other terminal event ends the run. So the run returns to Python
 once per switch, never per step.
@@ -13,7 +13,7 @@ Why this is exact and does not chatter: each phase's right-hand side is smooth;
 its guards are located to rounding on the dense output of the step that crosses
 them; every reset is chosen so that the new phase moves off the switching
 surface it starts on, and an event that starts at zero cannot fire in the first
-step of its phase (:mod:`dynamics.engine.driver`). A run that still switched more
+step of its phase (:mod:`numerics.engine.driver`). A run that still switched more
 than ``max_switches`` times stops with that reason rather than hang.
 """
 
@@ -24,8 +24,8 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from dynamics.engine import END, START
-from dynamics.integrate import integrate
+from numerics.engine import END, START
+from numerics.integrate import integrate
 
 __all__ = ["MAX_SWITCHES", "SWITCHES", "Phase", "Switch", "run_phases"]
 
@@ -62,7 +62,7 @@ class Phase:
         Name of each event function component: a name in :data:`SWITCHES` ends
         the phase; a terminal one of the others ends the run.
     terminal, direction : tuple of int
-        Per event, as in :func:`dynamics.engine.integrate`.
+        Per event, as in :func:`numerics.engine.integrate`.
     atol : ndarray
         Absolute tolerance per component.
     sigma : float
@@ -112,12 +112,12 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
     phi0 : float
         The angle at the start of the run.
     method, rtol, max_steps, progress
-        As for :func:`dynamics.integrate.integrate` (``max_steps`` over all phases).
+        As for :func:`numerics.integrate.integrate` (``max_steps`` over all phases).
     t_eval : array_like, optional
         Output times; by default every step. Event rows (switches, the stop) are
         output either way.
     steps : bool, optional
-        Output every step as well as ``t_eval`` (as :func:`dynamics.integrate.integrate`).
+        Output every step as well as ``t_eval`` (as :func:`numerics.integrate.integrate`).
 
     Returns
     -------

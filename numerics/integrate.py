@@ -1,11 +1,11 @@
 """One call for every integrator: the compiled Radau IIA engine, or one of scipy's solvers as a cross-check.
 
 :func:`integrate` takes a model's compiled ``fun``, ``jac`` and ``events``
-(``f(t, y, args)``) and returns a :class:`dynamics.engine.Result` whichever
+(``f(t, y, args)``) and returns a :class:`numerics.engine.Result` whichever
 method runs it:
 
 ``"radau"`` (the default)
-    the compiled engine, :func:`dynamics.engine.integrate`: no Python per step;
+    the compiled engine, :func:`numerics.engine.integrate`: no Python per step;
 ``"Radau"``, ``"BDF"``, ``"LSODA"``
     scipy's solvers stepped from Python, for cross-checks: events are located on
     their dense output with ``brentq`` (to 4 eps), output rows carry the same
@@ -16,8 +16,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from dynamics import engine
-from dynamics.engine import END, EVENT, SAMPLE, START, STEP, Interrupts, Result, check_inputs, no_events
+from numerics import engine
+from numerics.engine import (
+    END,
+    EVENT,
+    SAMPLE,
+    START,
+    STEP,
+    Interrupts,
+    Result,
+    check_inputs,
+    no_events,
+)
 
 __all__ = ["METHODS", "integrate"]
 
@@ -27,7 +37,7 @@ METHODS = ("radau", "Radau", "BDF", "LSODA")
 def integrate(fun, jac, t_span, y0, *, args=(), method: str = "radau", rtol=1e-8, atol=1e-10, events=None,
               terminal=0, direction=0, t_eval=None, steps=None, max_steps: int = 2_000_000,
               chunk_steps: int = 20_000, progress=None) -> Result:
-    """Integrate y' = fun(t, y, args) with ``method`` (:data:`METHODS`); see :func:`dynamics.engine.integrate`."""
+    """Integrate y' = fun(t, y, args) with ``method`` (:data:`METHODS`); see :func:`numerics.engine.integrate`."""
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
