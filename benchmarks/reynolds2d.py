@@ -66,11 +66,11 @@ from lubrication import (
 )
 from lubrication.finite_length import small_eccentricity_factor
 from lubrication.reynolds2d import (
-    _general_outflow,
-    _general_solve,
-    _general_system,
-    _line_data,
-    _setup,
+    general_outflow,
+    general_solve,
+    general_system,
+    line_data,
+    solver_setup,
     reynolds2d_forces,
 )
 
@@ -101,7 +101,7 @@ def _modal_loop(repeats, kappa, omk, eps_dot, w_a, kappa_g, omk_g, rule, cell_ru
 
 
 def _modal_args(annulus, motion, n, n_axial):
-    setup = _setup(annulus, "thin", n, n_axial, "open", None, 2, None)
+    setup = solver_setup(annulus, "thin", n, n_axial, "open", None, 2, None)
     lam, coef, _ = setup.modes
     return (annulus.kappa, annulus.one_minus_kappa, motion.eps_dot, motion.w_a, setup.kappa_g, setup.omk_g,
             setup.rule, setup.cell_rule, setup.m, lam, coef, float(setup.weights.sum()), float(setup.weights[-1]))
@@ -122,17 +122,17 @@ def _sparse_forces(annulus, motion, n, n_axial, stage_times=None):
     outflow by the same sparse algebra, and the line integrals).
     """
     start = time.perf_counter()
-    setup = dataclasses.replace(_setup(annulus, "thin", n, n_axial, "open", None, 2, None), modes=None)
+    setup = dataclasses.replace(solver_setup(annulus, "thin", n, n_axial, "open", None, 2, None), modes=None)
     z_lines = setup.z.size
-    integrals, masses = _line_data(setup, annulus, motion.eps_dot)
+    integrals, masses = line_data(setup, annulus, motion.eps_dot)
     integrals = np.repeat(integrals, z_lines, axis=0)
     masses = np.repeat(masses, z_lines, axis=0)
     half_u = 0.5 * A * motion.w_a
-    matrix, rhs, known, axial, end_lines = _general_system(setup, integrals, masses, half_u, sealed=False)
+    matrix, rhs, known, axial, end_lines = general_system(setup, integrals, masses, half_u, sealed=False)
     assembled = time.perf_counter()
-    phi = _general_solve(matrix, rhs, known)
+    phi = general_solve(matrix, rhs, known)
     solved = time.perf_counter()
-    outflow = _general_outflow(setup, integrals, masses, half_u, phi, axial, end_lines)
+    outflow = general_outflow(setup, integrals, masses, half_u, phi, axial, end_lines)
     lines = np.empty((z_lines, 3))
     sums = reynolds2d_kernels.lines_film(integrals, masses, 2.0 * half_u, 0.0, phi.reshape(z_lines, n), outflow,
                                  setup.weights, False, 0.0, lines)

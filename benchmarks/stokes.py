@@ -23,8 +23,8 @@ is only (c_fine - c_coarse) / (s^4 - 1)); the goals are judged on the others.
 
 Cost. Wall time is split into assembly (meshing, basis, sparse matrices and
 the extraction of the free-free block: the constructor of
-``lubrication.stokes._Discretisation`` with its factorisation deferred),
-factorisation (SuperLU, ``_Discretisation._factorise``) and the three
+``lubrication.stokes.Discretisation`` with its factorisation deferred),
+factorisation (SuperLU, ``Discretisation._factorise``) and the three
 solves with force recovery (what :func:`stokes_resistance` does after the
 factorisation). ``total`` is their sum; the end-to-end call
 :func:`stokes_resistance` (with its factorisation cache cleared) is also
@@ -64,7 +64,7 @@ from benchmarks.publish import publish
 from benchmarks.reynolds import _machine
 from benchmarks.stokes_exact import exact_table, table_forces
 from lubrication.stokes import (
-    _Discretisation,
+    Discretisation,
     clear_cache,
     default_mesh,
     stokes_resistance,
@@ -84,8 +84,8 @@ LOOKUP_CALLS = 200_000
 LOOKUP_ROUNDS = 7
 
 
-class _Deferred(_Discretisation):
-    """``_Discretisation`` whose first factorisation is left to the caller, to time it apart."""
+class _Deferred(Discretisation):
+    """``Discretisation`` whose first factorisation is left to the caller, to time it apart."""
 
     def _factorise(self, cautious: bool):
         if not getattr(self, "_deferred_once", False):

@@ -328,8 +328,8 @@ def _table_path():
 def factor_table() -> FactorTable:
     """The thin-gap factor table: read from the cache folder, or built and stored.
 
-    Building it takes about 10 s on two cores (measured 9-14 s; 22 s when the
-    solver's kernels are compiled first).
+    Building it solves the Reynolds equation on (theta, z) at every node (the
+    performance page gives the time).
 
     The cache folder is :func:`numerics.files.cache_folder` (``$SNAIL_CACHE``, else
     ``~/.cache/snail-cylinder``); a file with other settings is rebuilt.
@@ -342,7 +342,8 @@ def factor_table() -> FactorTable:
                 return FactorTable(data["coef_eps"], data["coef_chi"], ZETA_MIN, X0)
     except (OSError, KeyError, ValueError):
         pass
-    logger.info("Building the finite-length factor table (%d x %d nodes) into %s.", N_ZETA, N_S, path)
+    logger.info("building the finite-length factor table (%d x %d nodes; first use only, about a minute with its "
+                "kernels' compiling) into %s", N_ZETA, N_S, path)
     table = _build_table(N_ZETA, N_S, ZETA_MIN, X0)
     buf = io.BytesIO()
     np.savez(buf, settings=settings, coef_eps=table.coef_eps, coef_chi=table.coef_chi)

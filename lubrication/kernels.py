@@ -156,9 +156,12 @@ SOURCES_HASH = sources_hash(*sorted(Path(__file__).parent.glob("*.py")))
 
 
 def kernel_name(model: str, kernel) -> str:
-    """What the equations compiled with ``kernel`` are filed under: the model and a hash of the kernel's file
-    and of this package's sources (a kernel from outside the package, a test's say, carries its own file)."""
-    path = Path(getattr(getattr(kernel, "py_func", kernel), "__code__").co_filename)
+    """What the equations compiled with ``kernel`` are filed under: the model, the kernel, and a hash of the
+    kernel's file and of this package's sources (a kernel from outside the package, a test's say, carries its
+    own file)."""
+    function = getattr(kernel, "py_func", kernel)
+    path = Path(function.__code__.co_filename)
     extra = (path,) if path.exists() and path.parent != Path(__file__).parent else ()
     digest = sources_hash(*extra, *sorted(Path(__file__).parent.glob("*.py")))
-    return "".join(c if c.isalnum() else "_" for c in model) + f"_{digest}"
+    # a model may have several kernels (a full and a cavitating film): each is filed apart
+    return "".join(c if c.isalnum() else "_" for c in f"{model}_{function.__name__}") + f"_{digest}"

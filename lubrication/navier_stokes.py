@@ -130,7 +130,7 @@ _MAX_HALVINGS = 6
 class _NavierStokesSystem:
     """Newton's method for the steady Navier-Stokes equations on a Stokes discretisation.
 
-    ``disc`` is a :class:`lubrication.stokes._Discretisation` (a = 1, mu = 1);
+    ``disc`` is a :class:`lubrication.stokes.Discretisation` (a = 1, mu = 1);
     the density ``rho`` and the frame rate ``chi_dot`` are in its units
     (module docstring).
     """
@@ -248,7 +248,7 @@ class _NavierStokesSystem:
         return x0, max_iter, False
 
     def loads(self, x: np.ndarray, rho: float, chi_dot: float) -> dict[str, float]:
-        """Forces and torques on both walls from the full residual (see ``_Discretisation.loads``)."""
+        """Forces and torques on both walls from the full residual (see ``Discretisation.loads``)."""
         return self.disc.residual_loads(self.residual(x, rho, chi_dot))
 
     def continuation(self, motion: tuple[float, float, float], rhos, chi_dot: float = 0.0):

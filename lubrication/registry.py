@@ -38,6 +38,7 @@ from numerics.keys import Key
 from .finite_length import end_factors, factor_table
 from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance, check_range
 from .inertia import inertial_f_eps
+from .inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
 from .kernels import SOURCES_HASH, KernelModel, kernel_name, linear
 from .spec import ForceModelSpec
 
@@ -114,7 +115,8 @@ COMPOSITIONS = MappingProxyType({
     "cavitation": Composition(
         {"cavitation": Key("cavitation model of the Reynolds film ('none': full film)",
                            choices=("none", "half-sommerfeld", "swift-stieber", "jfo")),
-         "p_cav": Key("pressure below which the film ruptures (absolute)", low=0.0, **_PRESSURE),
+         "p_cav": Key("pressure below which the film ruptures (absolute; below 0 a liquid under tension)",
+                      **_PRESSURE),
          "p_ref": Key("reference pressure: at the widest gap, or of the end regions with ends 'open' (absolute)",
                       low=0.0, bounds="()", **_PRESSURE)},
         "none", _cavitation_rule),
@@ -195,14 +197,15 @@ def _checked(spec: ForceModelSpec, options: Mapping, trajectory: bool) -> dict:
         if not given:
             continue
         on = composed.get(composition.name, composition.off) != composition.off
+        extra = [k for k in given if k != composition.name]
+        if not on and extra and composition.name not in composed:  # said off explicitly: the rest is moot
+            msg = (f"{extra[0]}: {', '.join(extra)} {'goes' if len(extra) == 1 else 'go'} with {composition.name}, "
+                   f"which is {composition.off!r} here; set {composition.name} or leave {' and '.join(extra)} out")
+            raise ValueError(msg)
         why = composition.rule(spec, composed, trajectory) if on else ""
-        if not on and any(k != composition.name for k in given):
-            why = f"{', '.join(k for k in given if k != composition.name)} go with {composition.name}, which is off"
         if why:
             msg = f"{composition.name}: {why}"
             raise ValueError(msg)
-    if composed.get("n_axial") is not None and composed.get("ends", "infinite") == "infinite":
-        raise ValueError("n_axial is for the Reynolds solver on (theta, z): it needs ends 'open' or 'sealed'")
     return {**own, **composed}
 
 
@@ -314,8 +317,6 @@ def kernel_model(name: str, *, length_over_a: float | None = None, rho: float | 
     if inertia != "none":
         if rho is None:
             raise ValueError("inertia = 'first-order' needs the fluid density rho (kg/m^3)")
-        from ._inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
-
         rho = check_range("rho", rho, 0.0, math.inf, low_open=True, unit="kg/m^3")
         inertia_table = (rho, KAPPA_NODES, DELTA_NODES, TABLE)
     return KernelModel(label, kernel, kernel_name(spec.name, kernel),

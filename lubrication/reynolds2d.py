@@ -458,7 +458,7 @@ def _check_int(name: str, value, low: int, high: int, even: bool = False) -> int
 
 
 @dataclass(frozen=True)
-class _Setup:
+class SolverSetup:
     """Everything the kernels need besides the motion (built-in and user profiles alike)."""
 
     kind: int
@@ -597,8 +597,8 @@ def _cell_rule(m: int):
     return tpos, lower0, lower1
 
 
-def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clustering: float | None,
-           points_per_cell: int, end_layer: float | None) -> _Setup:
+def solver_setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clustering: float | None,
+                 points_per_cell: int, end_layer: float | None) -> SolverSetup:
     n = _check_int("n", n, MIN_CELLS, MAX_CELLS)
     n_axial = _check_int("n_axial", n_axial, MIN_AXIAL_CELLS, MAX_AXIAL_CELLS, even=True)
     m = _check_int("points_per_cell", points_per_cell, 1, 8)
@@ -637,7 +637,7 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
         h_lines, q_lines = (_NO_LINES, _NO_LINES)
         if kind == reynolds_kernels.TABULATED:
             h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, gamma, centre, None)
-        return _Setup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
+        return SolverSetup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
                       z, weights, True, tuple(modes))
     z_half = axial_grid(half_length, n_half, layer)
     theta_nodes = centre + _theta_of_psi(nodes, kappa_g)
@@ -645,11 +645,11 @@ def _setup(annulus: Annulus, profile, n: int, n_axial: int, ends: str, clusterin
     z = z_half if half else np.concatenate((-z_half[:0:-1], z_half))
     weights = _axial_matrices(z)[4]
     h_lines, q_lines = _tabulate_lines(profile, annulus, n, m, kappa_g, gamma, centre, a * z)
-    return _Setup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
+    return SolverSetup(kind, kappa, omk, kappa_g, omk_g, centre, rule, nodes, cell_rule, m, h_lines, q_lines,
                   z, weights, half, None)
 
 
-def _line_data(setup: _Setup, annulus: Annulus, eps_dot: float):
+def line_data(setup: SolverSetup, annulus: Annulus, eps_dot: float):
     n_lines = setup.h_lines.shape[0]
     n = setup.nodes.size
     integrals = np.zeros((n_lines, n, reynolds_kernels.N_INTEGRALS))
@@ -660,7 +660,7 @@ def _line_data(setup: _Setup, annulus: Annulus, eps_dot: float):
     return integrals, masses
 
 
-def _general_system(setup: _Setup, integrals, masses, half_u: float, sealed: bool):
+def general_system(setup: SolverSetup, integrals, masses, half_u: float, sealed: bool):
     """The (theta, z) system of a z-dependent gap: sparse matrix, load, the known (zero) nodes, its axial part."""
     import scipy.sparse as sp
 
@@ -689,7 +689,7 @@ def _general_system(setup: _Setup, integrals, masses, half_u: float, sealed: boo
     return matrix, rhs, known, axial, end_lines
 
 
-def _general_solve(matrix, rhs, known) -> np.ndarray:
+def general_solve(matrix, rhs, known) -> np.ndarray:
     """Sparse LU of the system with the known nodes at zero."""
     from scipy.sparse.linalg import splu
 
@@ -699,7 +699,7 @@ def _general_solve(matrix, rhs, known) -> np.ndarray:
     return phi
 
 
-def _general_outflow(setup: _Setup, integrals, masses, half_u: float, phi, axial, end_lines) -> np.ndarray:
+def general_outflow(setup: SolverSetup, integrals, masses, half_u: float, phi, axial, end_lines) -> np.ndarray:
     """The axial outflow density d of every line (:func:`lubrication.reynolds2d_kernels.flux_correction`).
 
     d = (M_z^-1 (x) I) blockdiag(M_theta)^-1 Z phi over the unknown lines, Z the
@@ -732,11 +732,11 @@ def _general_outflow(setup: _Setup, integrals, masses, half_u: float, phi, axial
     return outflow
 
 
-def _solve_general(setup: _Setup, integrals, masses, half_u: float, sealed: bool):
+def _solve_general(setup: SolverSetup, integrals, masses, half_u: float, sealed: bool):
     """phi and the axial outflow density d on every line of a z-dependent gap (sparse LU)."""
-    matrix, rhs, known, axial, end_lines = _general_system(setup, integrals, masses, half_u, sealed)
-    phi = _general_solve(matrix, rhs, known)
-    outflow = _general_outflow(setup, integrals, masses, half_u, phi, axial, end_lines)
+    matrix, rhs, known, axial, end_lines = general_system(setup, integrals, masses, half_u, sealed)
+    phi = general_solve(matrix, rhs, known)
+    outflow = general_outflow(setup, integrals, masses, half_u, phi, axial, end_lines)
     return phi.reshape(integrals.shape[:2]), outflow
 
 
@@ -762,12 +762,12 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int, n_axial: i
            end_layer: float | None, field: bool):
     """Solve once; return the three z-integrated line integrals and, if asked for, the field."""
     p_cav, p_end = _check_cavitation(cavitation, ends, p_cav, p_end)
-    setup = _setup(annulus, profile, n, n_axial, ends, clustering, points_per_cell, end_layer)
+    setup = solver_setup(annulus, profile, n, n_axial, ends, clustering, points_per_cell, end_layer)
     a, mu = annulus.a, fluid.mu
     u_a = a * motion.w_a
     u_b = (annulus.b if setup.kind == reynolds_kernels.ECCENTRIC else a) * motion.w_b
     half_u = 0.5 * (u_a + u_b)
-    integrals, masses = _line_data(setup, annulus, motion.eps_dot)
+    integrals, masses = line_data(setup, annulus, motion.eps_dot)
     sealed = ends == "sealed"
     truncate = cavitation == "half-sommerfeld"
     n_lines = setup.z.size
@@ -797,7 +797,7 @@ def _solve(annulus: Annulus, motion: Motion, fluid: Fluid, *, n: int, n_axial: i
     return setup, sums, phi, lines
 
 
-def _to_forces(setup: _Setup, annulus: Annulus, fluid: Fluid, sums) -> tuple[float, float, float]:
+def _to_forces(setup: SolverSetup, annulus: Annulus, fluid: Fluid, sums) -> tuple[float, float, float]:
     """Scale the z-integrated line integrals (z in units of a) to f_eps, f_chi, T_a over the length."""
     a, mu = annulus.a, fluid.mu
     factor = (2.0 if setup.half else 1.0) * a

@@ -251,7 +251,7 @@ class StokesFlow:
         return splu(m).solve(rhs)
 
 
-class _Discretisation:
+class Discretisation:
     """Assembled and factorised Stokes system of one annulus with a = 1, mu = 1.
 
     Lengths are in units of a, so the system is a function of (b/a, eps/a)
@@ -451,7 +451,7 @@ def _discretisation(b_over_a, eps_over_a, n_around, n_across, clustering):
         # factorisation would be held together (measured: 168 MB against 100 MB at the peak).
         while _CACHE and sum(d.nbytes for d in _CACHE.values()) + max(d.nbytes for d in _CACHE.values()) > CACHE_BYTES:
             _CACHE.popitem(last=False)
-        disc = _Discretisation(*key)
+        disc = Discretisation(*key)
     _CACHE[key] = disc
     while len(_CACHE) > 1 and sum(d.nbytes for d in _CACHE.values()) > CACHE_BYTES:
         _CACHE.popitem(last=False)

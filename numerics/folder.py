@@ -5,14 +5,19 @@ place together, so the target always holds either the previous complete set or
 the new one. A lock file beside the target makes a second run into the same
 folder refuse at once rather than interleave its files with the first. While
 the set is moved into place, SIGINT and SIGTERM are held back until the move is
-done. Only a folder that is empty or holds nothing but a run's outputs is ever
-replaced: a folder with other files in it is refused, never deleted.
+done; a run killed outright between the two renames of that move leaves the
+previous set aside, and the next run puts it back. Only a folder that is empty or
+holds a previous set (its files only, its summary a run's) is ever replaced: a
+folder with anything else in it is refused, never deleted. A symbolic link to a
+folder is followed (the set replaces the folder it points to); a mount point,
+which cannot be renamed, is refused before anything runs.
 """
 
 from __future__ import annotations
 
 import errno
 import fcntl
+import json
 import os
 import shutil
 import signal
@@ -104,6 +109,8 @@ class OutputFolder:
 
     def __init__(self, path: str | os.PathLike):
         self.path = _absolute(path)
+        if self.path.is_symlink():  # follow a link: the set replaces the folder it points to, not the link
+            self.path = Path(os.path.realpath(self.path))
         self.staging = self.path.parent / f".{self.path.name}.staging-{os.getpid()}"
         self._lock_fd: int | None = None
         self._committed = False
@@ -151,19 +158,31 @@ class OutputFolder:
 
     def _check_target(self) -> None:
         _not_through_a_file(self.path)
+        if os.path.ismount(self.path):
+            msg = (f"{self.path} is a mount point, which a run cannot replace (it moves a new set into place by "
+                   "renaming); choose a folder inside it")
+            raise FolderError(msg)
         if self.path.is_dir():
-            others = sorted(p.name for p in self.path.iterdir() if p.name not in OUTPUT_NAMES)
+            entries = list(self.path.iterdir())
+            others = sorted(p.name for p in entries if p.name not in OUTPUT_NAMES or not p.is_file() or p.is_symlink())
             if others:
                 shown = ", ".join(others[:5]) + (", ..." if len(others) > 5 else "")
                 msg = (f"{self.path} holds files that are not a run's outputs ({shown}); a run replaces "
                        "its folder whole, so choose an empty or new folder")
                 raise FolderError(msg)
+            if entries and not _is_summary(self.path / "summary.json"):
+                msg = (f"{self.path} holds {', '.join(sorted(p.name for p in entries))} but no summary.json of a run: "
+                       "not a previous output set, so it is not replaced; choose an empty or new folder")
+                raise FolderError(msg)
 
     def _remove_leftovers(self) -> None:
-        """Staging and previous folders of runs that were killed outright (we hold the lock)."""
-        for pattern in (f".{self.path.name}.staging-*", f".{self.path.name}.previous-*"):
-            for stale in self.path.parent.glob(pattern):
-                shutil.rmtree(stale, ignore_errors=True)
+        """Put back the previous set of a run killed between the two renames of its commit; remove the staging
+        and previous folders of runs that were killed outright otherwise (we hold the lock)."""
+        previous = sorted(self.path.parent.glob(f".{self.path.name}.previous-*"))
+        if previous and not self.path.exists():
+            os.rename(previous.pop(), self.path)
+        for stale in [*self.path.parent.glob(f".{self.path.name}.staging-*"), *previous]:
+            shutil.rmtree(stale, ignore_errors=True)
 
     def _cannot_write(self, err: OSError) -> FolderError:
         return FolderError(f"cannot write outputs to {self.path}: {err.strerror or err}")
@@ -173,3 +192,12 @@ class OutputFolder:
             fcntl.flock(self._lock_fd, fcntl.LOCK_UN)
             os.close(self._lock_fd)
             self._lock_fd = None
+
+
+def _is_summary(path: Path) -> bool:
+    """Whether ``path`` is the summary.json of a run: a file holding a JSON object with a status and forces."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and {"status", "forces"} <= set(data)

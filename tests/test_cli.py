@@ -56,7 +56,7 @@ def test_negative_numbers_in_scientific_notation_are_values(capsys):
         ([*GEOMETRY, "--kappa", "0.5", "--rho", "0"], "rho must be in (0, inf)"),
         ([*GEOMETRY, "--kappa", "nan"], "not a finite number: 'nan'"),
         ([*GEOMETRY, "--kappa", "0.5", "--p-ref", "nan"], "not a finite number: 'nan'"),
-        ([*GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n (cells around the gap)"),
+        ([*GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n must be an integer in [8, 1048576], got 3"),
         ([*GEOMETRY, "--kappa", "abc"], "not a finite number"),
         ([*GEOMETRY, "--kappa", "0.5", "--model", "magic"], "invalid choice"),
         ([*GEOMETRY], "required: --kappa"),
@@ -137,7 +137,7 @@ def test_stokes_flow_field_is_written_for_paraview(tmp_path, capsys):
 
 def test_flow_without_stokes_is_refused(tmp_path, capsys):
     code, _, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--flow", str(tmp_path))
-    assert code == 2 and "--flow needs the Stokes model" in err
+    assert code == 2 and "--flow draws the finite-element Stokes flow: it needs --model stokes" in err
 
 
 def test_stokes_without_the_fem_extra_says_how_to_install_it(monkeypatch, capsys):
@@ -149,9 +149,8 @@ def test_stokes_without_the_fem_extra_says_how_to_install_it(monkeypatch, capsys
 
 def test_forces_with_cavitation(capsys):
     """Below the cavitation pressure the film ruptures: the JFO forces differ from the full film's."""
-    args = ["forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256",
-            "--p-ref", "101325", "--p-cav", "101320", "--json"]
-    code, out, _ = run(capsys, *args, "--cavitation", "jfo")
+    args = ["forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256", "--json"]
+    code, out, _ = run(capsys, *args, "--cavitation", "jfo", "--p-ref", "101325", "--p-cav", "101320")
     assert code == 0
     jfo = json.loads(out)
     code, out, _ = run(capsys, *args)
@@ -174,9 +173,11 @@ def test_all_models_report_each_component_against_its_own_size():
 
 
 @pytest.mark.parametrize(("args", "words"), [
-    (["--model", "closed-form", "--cavitation", "jfo"], "--cavitation jfo needs the Reynolds solver"),
+    (["--model", "closed-form", "--cavitation", "jfo"], "--cavitation: cavitation is a rupture of the Reynolds "
+                                                        "film: it needs the model 'reynolds', not 'closed-form'"),
     (["--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1"], "--p-ref must be in (0, inf) Pa"),
-    (["--model", "reynolds", "--cavitation", "jfo", "--p-cav", "2e5"], "--p-cav must be in [0, 101325] Pa"),
+    (["--model", "reynolds", "--cavitation", "jfo", "--p-cav", "2e5"], "--p-cav must not exceed p_ref"),
+    (["--model", "reynolds", "--p-ref", "2e5"], "--p-ref: p_ref goes with cavitation, which is 'none' here"),
 ])
 def test_cavitation_options_are_checked(capsys, args, words):
     code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", *args)

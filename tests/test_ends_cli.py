@@ -31,7 +31,7 @@ from lubrication.registry import kernel_model
 from lubrication.reynolds2d import reynolds2d_forces
 
 A, B = 0.008, 0.01125
-FLUID = Fluid(nu=2e-4, rho=960.0)
+FLUID = Fluid(nu=2e-4, rho=1000.0)  # the steel preset's, snail forces' default
 NODES = 9
 GEOMETRY = ["--a", "0.008", "--b", "0.01125"]
 
@@ -101,18 +101,19 @@ NO_REYNOLDS_LIMIT = 'run.max_gap_reynolds="none"'  # the comparison is of the fo
 
 
 def test_scene_with_open_ends_runs_the_finite_length_model(table, tmp_path, capsys):
-    """`snail run --set model.ends="open"` on the default scene (steel, closed forms): the run is the
-    simulation with kernel_model("closed-form", ends="open", L/a) to the integrator's determinism, and not the infinite one."""
+    """`snail run --set model.ends="open"` on the default scene (steel, exact Stokes forces): the run is the
+    simulation with kernel_model("stokes-exact", ends="open", L/a) to the integrator's determinism, and not the
+    infinite one."""
     code, out, _ = run(capsys, "run", "-o", str(tmp_path / "open"), "--t-end", "0.3", "--no-plot", "--json",
                        "--set", 'model.ends="open"', "--set", NO_REYNOLDS_LIMIT)
     assert code == 0
     summary = json.loads(out)
-    assert summary["forces"] == "closed-form/open-ends"
+    assert summary["forces"] == "stokes-exact/open-ends"
     ap = preset("steel", nu=2e-4, alpha=math.radians(2.4))
     limits = Limits(max_gap_reynolds=None)
     direct = {ends: simulate(ap, Initial(kappa=0.5, phi=0.5), 0.3, limits=limits, rtol=1e-8,
-                             forces=kernel_model("closed-form", ends, length_over_a=ap.length / ap.a) if ends == "open"
-                             else kernel_model("closed-form")) for ends in ("open", "infinite")}
+                             forces=kernel_model("stokes-exact", ends=ends, length_over_a=ap.length / ap.a))
+              for ends in ("open", "infinite")}
     x_b = summary["final"]["x_b"]
     assert x_b == pytest.approx(float(direct["open"].columns["x_b"][-1]), rel=1e-12)
     assert abs(x_b / float(direct["infinite"].columns["x_b"][-1]) - 1.0) > 1e-3
@@ -152,11 +153,11 @@ def test_forces_open_ends_with_half_sommerfeld(capsys):
     args = ("--model", "reynolds", "--ends", "open", "--cavitation", "half-sommerfeld", "--p-ref", "5",
             "--p-cav", "0", "--json")
     code, data, _ = _forces(capsys, *args)
-    assert code == 0 and data["p_end"] == 5.0
+    assert code == 0 and data["p_ref"] == 5.0
     annulus = Annulus.from_kappa(A, B, 0.6, 0.1035)
     motion = Motion(eps_dot=-1e-5, omega_a=1.5)
-    want = reynolds2d_forces(annulus, motion, FLUID, n=32, n_axial=64, cavitation="half-sommerfeld", p_end=5.0)
-    full = reynolds2d_forces(annulus, motion, FLUID, n=32, n_axial=64)
+    want = reynolds2d_forces(annulus, motion, FLUID, cavitation="half-sommerfeld", p_end=5.0)  # its own grid
+    full = reynolds2d_forces(annulus, motion, FLUID)
     assert (data["f_eps"], data["f_chi"], data["T_a"]) == pytest.approx(want.as_tuple(), rel=1e-14)
     assert abs(data["f_eps"] / full.f_eps - 1.0) > 1.0  # f_eps even changes sign
 
@@ -165,7 +166,7 @@ def test_forces_n_axial_is_cells_along_the_whole_length(capsys):
     code, data, _ = _forces(capsys, "--model", "reynolds", "--ends", "open", "--n-axial", "16", "--json")
     assert code == 0 and data["n_axial"] == 16
     want = reynolds2d_forces(Annulus.from_kappa(A, B, 0.6, 0.1035), Motion(eps_dot=-1e-5, omega_a=1.5), FLUID,
-                             n=32, n_axial=16)
+                             n_axial=16)
     assert data["f_chi"] == pytest.approx(want.f_chi, rel=1e-14)
     with pytest.raises(SystemExit):
         main(["forces", "--help"])
@@ -184,15 +185,16 @@ def test_forces_all_with_open_ends_compares_like_with_like(table, capsys):
 
 
 @pytest.mark.parametrize(("args", "words"), [
-    (["--model", "auto", "--ends", "open"], "--ends open with --model auto"),
-    (["--model", "stokes", "--ends", "open"], "--ends open with --model stokes"),
-    (["--model", "all", "--ends", "sealed"], "--ends sealed needs --model reynolds"),
-    (["--model", "closed-form", "--ends", "sealed"], "--ends sealed needs --model reynolds"),
+    (["--model", "auto", "--ends", "open"], "--model auto chooses its model and options itself; drop --ends"),
+    (["--model", "stokes", "--ends", "open"], "--ends: the stokes model is per unit length of an infinitely long "
+                                              "annulus: ends must be 'infinite'"),
+    (["--model", "all", "--ends", "sealed"], "ends = 'sealed' needs the Reynolds solver"),
+    (["--model", "closed-form", "--ends", "sealed"], "ends = 'sealed' needs the Reynolds solver"),
     (["--model", "reynolds", "--ends", "open", "--grid", "uniform"], "--grid"),
     (["--model", "reynolds", "--n-axial", "32"], "--n-axial"),
     (["--model", "reynolds", "--ends", "open", "--cavitation", "jfo"], "only half-sommerfeld"),
-    (["--model", "reynolds", "--ends", "sealed", "--cavitation", "half-sommerfeld"], "--ends sealed"),
-    (["--model", "reynolds", "--ends", "open", "--n-axial", "31"], "n_axial must be an even integer"),
+    (["--model", "reynolds", "--ends", "sealed", "--cavitation", "half-sommerfeld"], "with sealed ends"),
+    (["--model", "reynolds", "--ends", "open", "--n-axial", "31"], "--n-axial must be an even integer in [4, 4096]"),
 ])
 def test_forces_refuses_what_a_model_cannot_do_with_the_ends(capsys, args, words):
     code, _, err = _forces(capsys, *args)

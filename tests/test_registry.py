@@ -125,8 +125,8 @@ FLUID = Fluid(2e-4, 1000.0)
     ("stokes-exact", {"ends": "sealed"}, "needs the Reynolds solver"),
     ("stokes", {"ends": "open"}, "per unit length of an infinitely long annulus"),
     ("reynolds", {"ends": "open", "cavitation": "jfo"}, "only half-sommerfeld carries over"),
-    ("reynolds", {"p_cav": 1e5}, "go with cavitation, which is off"),
-    ("reynolds", {"n_axial": 32}, "needs ends 'open' or 'sealed'"),
+    ("reynolds", {"p_cav": 1e5}, "p_cav: p_cav goes with cavitation, which is 'none' here"),
+    ("reynolds", {"n_axial": 32}, "n_axial: n_axial goes with ends, which is 'infinite' here"),
     ("reynolds", {"n": 3}, "n must be an integer in [8, 1048576]"),
     ("closed-form", {"n": 32}, "takes no option 'n'"),
 ])
@@ -149,4 +149,4 @@ def test_compositions_a_model_takes_give_its_forces():
 def test_a_motion_whose_forces_overflow_is_refused():
     near = Annulus(a=0.008, b=0.01125, length=0.1, one_minus_kappa=1e-9)
     with pytest.raises(ValueError, match="overflow a double"):
-        registry.fluid_forces(near, Motion(chi_dot=1e300, omega_a=-1e300), FLUID, "stokes-exact")
+        registry.fluid_forces(near, Motion(chi_dot=1e308, omega_a=-1e308), FLUID, "stokes-exact")

@@ -12,7 +12,7 @@ from dynamics.apparatus import STEEL
 from dynamics.contact import reduced as uniform_contact
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.rough import (
-    _Run,
+    RoughContactRun,
     contact_state,
     free_events,
     free_jacobian,
@@ -353,7 +353,7 @@ def test_the_stiff_friction_term_is_in_the_sliding_jacobian(y, sigma):
 def test_free_phases_that_start_on_the_constraint_start_at_clearance_zero(rng):
     """After a lift-off the clearance is exactly 0, although r - r* itself rounds to either sign."""
     rough = _rough(0.9, 0.2, seed=1)
-    run = _Run(FIG7, rough, ENDLESS, 1e-8, 0.0)
+    run = RoughContactRun(FIG7, rough, ENDLESS, 1e-8, 0.0)
     rounded = 0
     for phi, omega_a, omega_b, x_b, turned_a in rng.uniform(-10.0, 10.0, (300, 5)):
         end = np.array([phi, omega_a, omega_b, x_b, turned_a])
@@ -373,7 +373,7 @@ def test_free_phases_that_start_on_the_constraint_start_at_clearance_zero(rng):
 
 def _graze(rough, c_e, omega_a=0.05, omega_b=0.3, x_b=1.0, turned_a=-0.5):
     """A touching free state whose reaction is ``c_e``: phi solved by brentq near the horizontal."""
-    run = _Run(FIG7, rough, ENDLESS, 1e-8, 0.0)
+    run = RoughContactRun(FIG7, rough, ENDLESS, 1e-8, 0.0)
 
     def reaction(phi):
         return run.state([phi, omega_a, omega_b, x_b, turned_a])[3] - c_e
@@ -388,7 +388,7 @@ def _graze(rough, c_e, omega_a=0.05, omega_b=0.3, x_b=1.0, turned_a=-0.5):
 def test_a_touch_with_a_reaction_below_rtol_is_a_graze(c_e, graze):
     """C_e <= rtol: the run flies on from the touch, unrecorded, at clearance 0; above it, contact."""
     rough = _rough(0.9, 0.2, seed=2)
-    run = _Run(FIG7, rough, ENDLESS, 1e-8, 0.0)
+    run = RoughContactRun(FIG7, rough, ENDLESS, 1e-8, 0.0)
     phi, touching = _graze(rough, c_e)
     after = run.transition(run.free(touching), "touch", touching, phi)
     if graze:

@@ -62,7 +62,7 @@ def test_default_scene_is_the_steel_apparatus_and_its_groups_match():
     assert scene.groups.reduced_params == app.reduced_params
     assert not scene.dimensionless and scene.tau == app.tau
     assert (scene.initial.kappa, scene.initial.phi, scene.initial.omega_b) == (0.5, 0.5, 0.0)
-    assert (scene.model.equations, scene.model.forces) == ("full", "closed-form")
+    assert (scene.model.equations, scene.model.forces) == ("full", "stokes-exact")  # the accurate forces
     assert (scene.run.t_end, scene.run.rtol) == (10.0, 1e-8)
     assert scene.t_end_tau == pytest.approx(10.0 / app.tau)
     assert scene.contact is None and scene.cavitation is None
@@ -347,7 +347,7 @@ def test_a_byte_order_mark_is_not_part_of_the_scene(tmp_path):
 
 
 def test_quantities_read_before_convert_without_pint_and_equal_what_pint_gives(tmp_path, monkeypatch):
-    from dynamics.scenes import units
+    from numerics import units
 
     monkeypatch.setenv("SNAIL_CACHE", str(tmp_path))
     units._memo.cache_clear()

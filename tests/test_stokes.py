@@ -401,13 +401,13 @@ def test_room_is_made_before_a_new_system_is_built(monkeypatch):
     one = next(iter(stokes._CACHE.values())).nbytes
     monkeypatch.setattr(stokes, "CACHE_BYTES", 1.5 * one)  # room for one system only
     held = []
-    build = stokes._Discretisation
+    build = stokes.Discretisation
 
     def recording(*key):
         held.append(sum(d.nbytes for d in stokes._CACHE.values()))
         return build(*key)
 
-    monkeypatch.setattr(stokes, "_Discretisation", recording)
+    monkeypatch.setattr(stokes, "Discretisation", recording)
     for kappa in (0.4, 0.5):
         stokes.stokes_resistance(1.0, 1.2, kappa, **small)
     assert held == [0, 0]

@@ -187,3 +187,13 @@ def test_trajectory_settles_at_the_target_speed(grade):
     run = table3.trajectory_run(STEEL, forces, sigma)
     assert run["status"] == "completed" and run["phase"] == run["fixed_phase"]
     assert run["speed"] == pytest.approx(v_target, rel=table3.TRAJECTORY_TOLERANCE)
+
+
+@pytest.mark.parametrize("sigma", [5e-5, 3e-4, 1.6e-3])
+def test_the_elasticity_is_that_of_the_paper_law_where_it_is_known(sigma):
+    """d ln V / d ln sigma, which docs/table3 reports and which sizes the recovery tolerance, against the paper's
+    locked law V = V* sin(alpha) zeta*/2 (6.1), where zeta*^2 = s (2 - s) with s = sigma/delta gives it in
+    closed form: d ln V / d ln sigma = (1 - s)/(2 - s). The central difference of table3 errs by O(h^2) = 1e-8."""
+    s_ratio = sigma / STEEL.delta
+    locked = partial(table3.paper_speed, STEEL, psi=0.5 * math.pi - 1e-9)  # locked whatever the slope
+    assert table3._elasticity(locked, sigma) == pytest.approx((1.0 - s_ratio) / (2.0 - s_ratio), rel=1e-7)

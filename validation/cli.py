@@ -9,6 +9,7 @@ would cost every one of them.
 from __future__ import annotations
 
 import ctypes
+import sys
 
 __all__ = ["register", "register_corrections"]
 
@@ -63,10 +64,22 @@ def _validate(args) -> int:
     _return_freed_blocks_to_the_system()
     from numerics.folder import writable_folder
 
-    from .suite import run_all
+    from dynamics.app.command import announce_compiling
+
+    from .suite import GROUPS, run_all
 
     writable_folder(args.output)  # an unusable path is bad input, found before any check runs
-    checks, seconds = run_all(args.output, quick=args.quick)
+    groups, done = len(GROUPS), []
+
+    def progress(title, passed, total, seconds):
+        done.append(title)
+        print(f"snail validate: [{len(done)}/{groups}] {title}: {passed} of {total} in {seconds:.0f} s",
+              file=sys.stderr, flush=True)
+
+    print(f"snail validate: {groups} groups of checks{' (the quick subset)' if args.quick else ''}; a line as "
+          "each ends", file=sys.stderr, flush=True)
+    with announce_compiling("validate"):
+        checks, seconds = run_all(args.output, quick=args.quick, progress=progress)
     failed = [c for c in checks if not c.passed]
     print(f"{len(checks) - len(failed)} of {len(checks)} checks passed in {seconds:.1f} s; "
           f"report in {args.output}/report.md")

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import os
+import shutil
+import tempfile
 import time
 from pathlib import Path
 
 from lubrication.stokes import clear_cache
 from numerics.files import write_json, write_text
+from numerics.folder import held_signals
 
 from . import (
     cavitation_checks,
@@ -58,14 +62,30 @@ def _fmt(x) -> str:
     return f"{x:.6g}" if isinstance(x, float) else str(x)
 
 
-def run_all(outdir: str | Path, quick: bool = False) -> tuple[list, float]:
+def run_all(outdir: str | Path, quick: bool = False, progress=None) -> tuple[list, float]:
     """Run all groups; write ``validation.json`` (the comparisons), ``findings.json`` and ``report.md``.
 
     Only comparisons (:class:`~validation.checks.Check`) are counted; findings,
-    numbers reported without a verdict, are listed apart.
+    numbers reported without a verdict, are listed apart. The report and its
+    figures are written into a staging folder beside ``outdir`` and moved into it
+    together at the end (signals held meanwhile): an interrupted run leaves the
+    previous report as it was, never part of a new one. ``progress(title, passed,
+    total, seconds)`` is called as each group ends.
     """
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(dir=outdir.parent, prefix=f".{outdir.name}.staging-"))
+    try:
+        checks, seconds = _run_groups(staging, quick, progress)
+        with held_signals():
+            for path in staging.iterdir():
+                os.replace(path, outdir / path.name)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return checks, seconds
+
+
+def _run_groups(outdir: Path, quick: bool, progress) -> tuple[list, float]:
     start = time.perf_counter()
     checks, findings, sections, summary = [], [], [], []
     results = {}
@@ -73,6 +93,9 @@ def run_all(outdir: str | Path, quick: bool = False) -> tuple[list, float]:
         group_start = time.perf_counter()
         results[title] = (*module.run(outdir, quick=quick), time.perf_counter() - group_start)
         clear_cache()  # a group's finite-element systems are not the next group's: free them
+        if progress is not None:
+            group_checks = [r for r in results[title][0] if isinstance(r, Check)]
+            progress(title, sum(c.passed for c in group_checks), len(group_checks), results[title][-1])
     for title in GROUPS:
         records, figures, text, group_seconds = results[title]
         group_checks = [r for r in records if isinstance(r, Check)]

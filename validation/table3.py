@@ -81,7 +81,7 @@ from scipy.optimize import brentq
 
 from dynamics.apparatus import preset
 from dynamics.contact.full import (
-    _Run,
+    FullContactRun,
     contact_functions,
     friction_coefficient,
     steady_full_contact,
@@ -348,7 +348,7 @@ def _settling_rate(apparatus, forces, sigma: float, state: FullSteady, psi: floa
     locked = state.phase == LOCKED
     sigma_slip = 0.0 if locked else math.copysign(1.0, apparatus.a * state.omega_a - (
         apparatus.a + contact.kappa_star * apparatus.delta) * state.omega_b)
-    args = _Run(apparatus, forces, contact, Limits(), TRAJECTORY_RTOL).contact_args(locked, sigma_slip)
+    args = FullContactRun(apparatus, forces, contact, Limits(), TRAJECTORY_RTOL).contact_args(locked, sigma_slip)
     y = np.array([state.chi, 0.0, state.omega_a, state.omega_b, 0.0])
     rates = np.linalg.eigvals(contact_functions(forces).jacobian(0.0, y, args)[:4, :4]) * apparatus.tau
     return -float(np.max(rates.real[np.abs(rates) > 1e-6]))

@@ -59,7 +59,6 @@ nitpicky = True
 nitpick_ignore = [
     ("py:class", "ContactParams"),  # dynamics.contact.steady.steady_speed: dynamics.contact.reduced.ContactParams
     ("py:func", "_tabulate"),  # lubrication.reynolds.film_setup: a private function
-    ("py:func", "_Run.contact_args"),  # dynamics.contact.full.contact_rhs: a private method
 ]
 nitpick_ignore_regex = [
     # Other libraries' objects have no target offline (intersphinx would need the network).

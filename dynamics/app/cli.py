@@ -11,8 +11,11 @@ from __future__ import annotations
 
 import argparse
 import gc
+import logging
 import re
+import signal
 import sys
+from contextlib import contextmanager
 from importlib.metadata import entry_points, version
 
 from dynamics.app.command import UsageError
@@ -59,19 +62,67 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    argv = _join_negative_values(sys.argv[1:] if argv is None else list(argv))
-    args = build_parser().parse_args(argv)
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where Python runs, as Ctrl-C is: every command stops the way it stops on Ctrl-C."""
+
+
+def _terminate(signum, _frame):
+    raise Terminated
+
+
+#: Loggers whose messages a command shows on standard error, and from which level: the project's warnings, and
+#: the notice of a table built on first use (a minute of silence otherwise).
+_SHOWN = {"numerics": logging.WARNING, "lubrication": logging.WARNING, "dynamics": logging.WARNING,
+          "validation": logging.WARNING, "lubrication.finite_length": logging.INFO}
+
+
+@contextmanager
+def _messages(command: str):
+    """The project's log messages on standard error as ``snail <command>: message`` while a command runs."""
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter(f"{command}: %(message)s"))
+    loggers = {name: logging.getLogger(name) for name in _SHOWN}
+    before = {name: (log.level, log.propagate) for name, log in loggers.items()}
+    for name, log in loggers.items():
+        log.setLevel(_SHOWN[name])
+        if name.count(".") == 0:
+            log.addHandler(handler)
     try:
-        return args.run(args)
+        yield
+    finally:
+        for name, log in loggers.items():
+            log.setLevel(before[name][0])
+            if name.count(".") == 0:
+                log.removeHandler(handler)
+
+
+def main(argv: list[str] | None = None) -> int:
+    previous = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        return _main(argv)
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _main(argv: list[str] | None) -> int:
+    argv = _join_negative_values(sys.argv[1:] if argv is None else list(argv))
+    command = "snail"
+    try:
+        args = build_parser().parse_args(argv)
+        command = f"snail {args.command}"
+        with _messages(command):
+            return args.run(args)
     except (UsageError, FolderError) as err:
-        print(f"snail {args.command}: error: {err}", file=sys.stderr)
+        print(f"{command}: error: {err}", file=sys.stderr)
         return 2
+    except Terminated:
+        print(f"{command}: interrupted by SIGTERM", file=sys.stderr)
+        return 128 + signal.SIGTERM
     except KeyboardInterrupt:
-        print(f"snail {args.command}: interrupted", file=sys.stderr)
+        print(f"{command}: interrupted", file=sys.stderr)
         return 130
     except Exception as err:  # a failed computation: say what failed, keep the exit status apart
-        print(f"snail {args.command}: computation failed: {type(err).__name__}: {err}", file=sys.stderr)
+        print(f"{command}: computation failed: {type(err).__name__}: {err}", file=sys.stderr)
         return 1
 
 

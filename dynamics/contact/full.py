@@ -96,6 +96,7 @@ __all__ = [
     "LOCKED_EVENTS",
     "SLIDING_EVENTS",
     "ContactFunctions",
+    "FullContactRun",
     "contact_functions",
     "friction_coefficient",
     "impact",
@@ -232,7 +233,7 @@ _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)
 
 
 def _contact_rhs(t, y, args):
-    """d/dt (chi, chi', Omega_a, Omega_b, X_b) in contact (SI); ``args`` from :func:`_Run.contact_args`."""
+    """d/dt (chi, chi', Omega_a, Omega_b, X_b) in contact (SI); ``args`` from :meth:`FullContactRun.contact_args`."""
     p, model, c = args[0], args[1], args[3]
     r = CONTACT_RATES(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)  # noqa: F821
     out = np.empty(5)
@@ -296,7 +297,7 @@ def contact_functions(model: KernelModel) -> ContactFunctions:
     return _compiled_for(model.kernel, model.kernel_name)
 
 
-class _Run:
+class FullContactRun:
     """What the phases of one full-model contact run share."""
 
     def __init__(self, apparatus, force_model: KernelModel, contact: ContactParams, limits: Limits, rtol: float,
@@ -411,7 +412,7 @@ def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams
     :class:`~dynamics.simulation.Trajectory`. At kappa = kappa* the run starts as
     on touching.
     """
-    run = _Run(apparatus, force_model, contact, limits, rtol, frame_terms)
+    run = FullContactRun(apparatus, force_model, contact, limits, rtol, frame_terms)
     y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                             initial.omega_a, initial.omega_b)
     if initial.kappa >= contact.kappa_star * (1.0 - 1e-14):

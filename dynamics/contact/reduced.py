@@ -141,6 +141,7 @@ __all__ = [
     "SLIDING",
     "SLIDING_EVENTS",
     "ContactParams",
+    "ReducedContactRun",
     "locked_events",
     "locked_friction",
     "locked_jacobian",
@@ -372,7 +373,7 @@ def locked_events(t, y, args):
     return g
 
 
-class _Run:
+class ReducedContactRun:
     """What the phases of one reduced contact run share: groups, contact, limits, tolerances."""
 
     def __init__(self, params: ReducedParams, contact: ContactParams, limits: Limits, rtol: float, x_b0: float):
@@ -468,7 +469,7 @@ def run_contact(params: ReducedParams, contact: ContactParams, t_end: float, kap
     """
     kappa0 = check_range("kappa0", kappa0, 0.0, contact.kappa_star, high_open=False)
     phi0 = check_finite("phi0", phi0)
-    run = _Run(params, contact, limits, rtol, x_b0)
+    run = ReducedContactRun(params, contact, limits, rtol, x_b0)
     if kappa0 == contact.kappa_star and math.cos(phi0) < 0.0:
         start = run.enter_contact(phi0, omega_a0, omega_b0, x_b0)
     else:

@@ -188,6 +188,7 @@ __all__ = [
     "FREE_EVENTS",
     "LOCKED_EVENTS",
     "SLIDING_EVENTS",
+    "RoughContactRun",
     "contact_state",
     "free_events",
     "free_jacobian",
@@ -462,7 +463,7 @@ def _contact_table(y, args):
 
 # -- the phases as the hybrid driver runs them ------------------------------------------
 
-class _Run:
+class RoughContactRun:
     """What the phases of one rough contact run share: groups, surfaces, limits, tolerances."""
 
     def __init__(self, params: ReducedParams, rough: RoughContact, limits: Limits, rtol: float, x_b0: float):
@@ -597,7 +598,7 @@ def run_rough_contact(params: ReducedParams, rough: RoughContact, t_end: float, 
     kappa_touch = rough.local_at(phi0, phi0 - x_b0).kappa
     kappa0 = check_range("kappa0", kappa0, 0.0, kappa_touch, high_open=False,
                          unit="(kappa* at the initial contact angles)")
-    run = _Run(params, rough, limits, rtol, x_b0)
+    run = RoughContactRun(params, rough, limits, rtol, x_b0)
     on_constraint = kappa0 == kappa_touch
     if on_constraint and run.state([phi0, omega_a0, omega_b0, x_b0, 0.0])[_C_E] > 0.0:
         start = run.enter_contact(phi0, omega_a0, omega_b0, x_b0, 0.0)

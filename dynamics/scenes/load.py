@@ -390,6 +390,8 @@ def _build(raw: dict[str, Any], source: str) -> Scene:
         apparatus = _physical_apparatus(raw)
         groups = Groups.from_apparatus(apparatus)
     initial = Initial(**_read(raw, "initial", dimensionless=apparatus is None))
+    if model.equations == "reduced" and "forces" not in raw.get("model", {}):
+        model = dataclasses.replace(model, forces="closed-form")  # the reduced equations' own, (2.11)
     _check_reduced(raw, model, initial)
     return Scene(apparatus=apparatus, groups=groups, initial=initial, model=model,
                  contact=_contact(raw, apparatus, groups, initial), cavitation=_cavitation(raw),

@@ -131,7 +131,7 @@ def _run(args) -> int:
                    "T_a": f.T_a, "wall_time_s": time.perf_counter() - start, **options}
             results.append((f, row))
     except (ValueError, ImportError) as err:
-        raise UsageError(str(err)) from err
+        raise UsageError(_as_flags(str(err))) from err
     if flow is not None:
         _write_flow(flow, annulus, motion, fluid, _for_model("stokes", given))
     if len(results) == 1:
@@ -148,6 +148,16 @@ def _run(args) -> int:
     else:
         _print_table(annulus, [row for _, row in results])
     return 0
+
+
+def _as_flags(message: str) -> str:
+    """A registry message that opens with an option's name ("p_ref must be ...") opens with its flag here."""
+    from lubrication import registry
+
+    for name in registry.option_keys():
+        if message.startswith((f"{name} ", f"{name}:")):
+            return f"--{name.replace('_', '-')}{message[len(name):]}"
+    return message
 
 
 def _all_models(annulus, given: dict) -> list[str]:

@@ -52,7 +52,7 @@ def _run_scene_drawing(args, figures) -> int:
     from dynamics.equations.limits import ValidityWarning
     from dynamics.app.run import run_scene
     from dynamics.scenes import SceneError, load_scene, resolved_toml
-    from numerics.folder import FolderError, OutputFolder
+    from numerics.folder import FolderError, OutputFolder, held_signals
 
     overrides = list(args.set)
     for key, value in (("run.t_end", args.t_end), ("run.output_interval", args.output_interval)):
@@ -88,9 +88,10 @@ def _run_scene_drawing(args, figures) -> int:
                 print(f"snail run: warning: {warning.message}; see summary.json", file=sys.stderr)
             else:
                 warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
-        info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
-                             plot=figures is not None, max_rows=scene.run.max_rows,
-                             draw=figures.png if figures is not None else None)
+        with held_signals():  # a computed run is written whole: a signal meanwhile takes effect after
+            info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
+                                 plot=figures is not None, max_rows=scene.run.max_rows,
+                                 draw=figures.png if figures is not None else None)
     finally:
         folder.__exit__(None, None, None)
     if args.json:
