@@ -4,11 +4,11 @@ Build (offline, warnings are errors), from the repository root::
 
     python -m sphinx -W --keep-going -b html docs/site docs/site/_build/html
 
-The gallery (``examples/``) runs at build time. ``SNAIL_DOCS_EXAMPLES`` chooses
+The gallery (``examples/``) runs at build time, every example by default: that is
+the build the README gives and the tests run. ``SNAIL_DOCS_EXAMPLES`` chooses
 which examples execute (the others are shown without their output):
 
-* unset or ``fast``: every example but the slow ones (``*_slow.py``);
-* ``all``: every example, the slow ones included;
+* unset or ``all``: every example;
 * ``none``: none (the quickest build of the pages);
 * anything else: a regular expression on the example's path
   (``SNAIL_DOCS_EXAMPLES=forces_against``).
@@ -80,9 +80,8 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 
 # -- sphinx-gallery --------------------------------------------------------------------------------
-_SELECTION = os.environ.get("SNAIL_DOCS_EXAMPLES", "fast").strip() or "fast"
+_SELECTION = os.environ.get("SNAIL_DOCS_EXAMPLES", "all").strip() or "all"
 _PATTERNS = {
-    "fast": r"/plot_(?!.*_slow\.py$)[^/]*\.py$",
     "all": r"/plot_[^/]*\.py$",
     "none": r"^$",
 }
@@ -104,7 +103,7 @@ sphinx_gallery_conf = {
 try:
     re.compile(sphinx_gallery_conf["filename_pattern"])
 except re.error as err:
-    raise ValueError(f"SNAIL_DOCS_EXAMPLES must be fast, all, none or a regular expression, got "
+    raise ValueError(f"SNAIL_DOCS_EXAMPLES must be all, none or a regular expression, got "
                      f"{_SELECTION!r}: {err}") from err
 
 # -- HTML ------------------------------------------------------------------------------------------
