@@ -95,8 +95,11 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "min_reported_time": 1,
     "download_all_examples": False,
-    "only_warn_on_example_error": False,
+    # An example that raises is a warning like any other defect: -W fails the build on it (exit
+    # status 1) once --keep-going has listed every problem, the examples' tracebacks included.
+    "only_warn_on_example_error": True,
     "abort_on_example_error": False,
+    "capture_repr": (),  # the examples print what they show; no repr of a block's last value
     "matplotlib_animations": False,
     "run_stale_examples": False,
 }
