@@ -70,7 +70,7 @@ def _mirror(target: Path) -> Path:
 @pytest.fixture(scope="module")
 def build(tmp_path_factory):
     """Build the mirrored site once: (return code, warning lines, HTML folder, standard error)."""
-    for module in ("sphinx", "myst_parser", "numpydoc", "sphinx_gallery"):
+    for module in ("sphinx", "myst_parser", "numpydoc", "sphinx_gallery", "sphinx-mathjax-offline"):
         pytest.importorskip(module, reason="the docs extra: pip install '.[docs]'")
     root = tmp_path_factory.mktemp("repository")
     _mirror(root)
@@ -90,6 +90,27 @@ def test_the_tests_build_the_site_as_the_readme_says():
 
 def _text(page: Path) -> str:
     return html.unescape(re.sub(r"<[^>]+>", "", page.read_text()))
+
+
+#: What makes a browser load a file when it shows a page: scripts, stylesheets and icons, images, frames.
+_LOADS = re.compile(r'<(?:script|img|iframe|source|video|audio|embed)\b[^>]*?\ssrc="([^"]+)"'
+                    r'|<link\b[^>]*?\shref="([^"]+)"|<object\b[^>]*?\sdata="([^"]+)"', re.IGNORECASE)
+_REMOTE = re.compile(r"^(//|[a-z][a-z0-9+.-]*:)", re.IGNORECASE)  # a host or a scheme: not a file of the site
+
+
+def _pages(out: Path) -> list[Path]:
+    return [page for page in out.rglob("*.html") if not {"_static", "_images", "_sources"} & set(page.parts)]
+
+
+def _loads(page: Path) -> list[str]:
+    return [next(url for url in match if url) for match in _LOADS.findall(page.read_text())]
+
+
+def _local_file(out: Path, page: Path, url: str) -> Path | None:
+    """The file of the built site that ``url`` on ``page`` names, or None if it names none."""
+    target = html.unescape(url).split("#")[0].split("?")[0]
+    path = (page.parent / target).resolve() if target else page.resolve()  # "#...": the page itself
+    return path if path.is_file() and out.resolve() in path.parents else None
 
 
 def test_a_broken_reference_fails_the_build(build):
@@ -129,6 +150,35 @@ def test_the_example_ran_to_its_end_and_its_page_has_its_figures_and_output(buil
     assert all((out / "_images" / name).is_file() for name in set(images))
     assert 'class="sphx-glr-script-out' in page, "the example's printed output is missing from its page"
     assert f"examples/{example}.py" not in stderr, stderr[-3000:]  # a failed example is named in the warnings
+
+
+def test_no_page_loads_anything_from_a_network(build):
+    _, _, out, _ = build
+    pages = _pages(out)
+    assert len(pages) > 50
+    remote = [f"{page.relative_to(out)}: {url}" for page in pages for url in _loads(page)
+              if _REMOTE.match(url) and not url.startswith("data:")]
+    missing = [f"{page.relative_to(out)}: {url}" for page in pages for url in _loads(page)
+               if not _REMOTE.match(url) and _local_file(out, page, url) is None]
+    # a CDN named anywhere in a page, a script's configuration included
+    cdn = [f"{page.relative_to(out)}: {host}" for page in pages
+           for host in re.findall(r"(?:https?:)?//([\w.-]+)", page.read_text()) if "cdn" in host.lower()]
+    assert not remote + missing + cdn
+
+
+def test_the_math_renderer_is_served_with_the_site(build):
+    """The equations render offline: each page with math loads MathJax from the site's own files."""
+    _, _, out, _ = build
+    with_math = [page for page in _pages(out) if 'class="math' in page.read_text()]
+    assert len(with_math) >= 5
+    renderers = set()
+    for page in with_math:
+        scripts = [url for url in _loads(page) if "mathjax" in url.lower() and ".js" in url]
+        assert scripts, f"{page.relative_to(out)} has equations but loads no MathJax"
+        renderers |= {_local_file(out, page, url) for url in scripts}
+    assert None not in renderers, "a page loads a MathJax that is not among the built files"
+    # MathJax 3 draws with its own web fonts, which it loads from beside its script
+    assert all(any((script.parent / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff")) for script in renderers)
 
 
 def _documented_actions(parser: argparse.ArgumentParser) -> list[argparse.Action]:

@@ -40,6 +40,10 @@ version = release
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.mathjax",
+    # MathJax 3 served with the site, so that the equations render without a network
+    # (sphinx.ext.mathjax alone loads it from a CDN): it copies MathJax into _static/mathjax/
+    # and sets mathjax_path to it, over any mathjax_path given here.
+    "sphinx-mathjax-offline",
     "sphinx.ext.viewcode",
     "numpydoc",
     "myst_parser",
@@ -100,6 +104,8 @@ sphinx_gallery_conf = {
     "only_warn_on_example_error": True,
     "abort_on_example_error": False,
     "capture_repr": (),  # the examples print what they show; no repr of a block's last value
+    # No sg_execution_times pages: they load jQuery and DataTables from CDNs, and time the build's machine.
+    "write_computation_times": False,
     "matplotlib_animations": False,
     "run_stale_examples": False,
 }
