@@ -1,18 +1,18 @@
 """The documentation site builds with warnings as errors, what it generates from the code is complete,
 and its Python examples run as printed.
 
-One build of ``docs/site`` serves the slow tests here: the pages, the API reference,
-the command-line and scene references, and the gallery with one example run and
-the others shown without running (``SNAIL_DOCS_EXAMPLES``). It runs in a mirror of
+One build of ``docs/site`` serves the tests here: the README's command, run as a
+reader runs it, so the pages, the API reference, the command-line and scene
+references, and the gallery with every example executed. It runs in a mirror of
 the repository under a temporary folder (symbolic links to the sources), so that
 its outputs (the gallery's pages, the generated API pages, the HTML) never touch
 the working tree. A page with a reference to a missing function is planted in the
 mirror: the build must fail on it, and on nothing else.
 
-The build takes about a minute with numba's cache warm (the tests before these warm it),
-and runs in the default test run, which installs the docs extra. The code blocks fenced as
-```python in the pages run too, as the README's do; a block that needs a file of the
-reader's is a ``{code-block}`` instead.
+The build runs in the default test run, which installs the docs extra; its cost is
+given in docs/site/building.md. The code blocks fenced as ```python in the pages run
+too, as the README's do; a block that needs a file of the reader's is a
+``{code-block}`` instead.
 """
 
 from __future__ import annotations
@@ -29,7 +29,10 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SITE = ROOT / "docs" / "site"
-EXECUTED = "plot_04_reduced_runaway"  # a short example (about 2 s) whose figure the build must contain
+#: The README's build, from the repository's root (the mirror's here).
+COMMAND = ["python", "-m", "sphinx", "-W", "--keep-going", "-b", "html", "docs/site", "docs/site/_build/html"]
+OUT = Path("docs", "site", "_build", "html")
+EXAMPLES = sorted(path.stem for path in (SITE / "examples").glob("plot_*.py"))
 GENERATED = {"_build", "auto_examples", "sg_execution_times.rst", "__pycache__"}
 PLANTED = """---
 orphan: true
@@ -67,25 +70,53 @@ def _mirror(target: Path) -> Path:
 @pytest.fixture(scope="module")
 def build(tmp_path_factory):
     """Build the mirrored site once: (return code, warning lines, HTML folder, standard error)."""
-    for module in ("sphinx", "myst_parser", "numpydoc", "sphinx_gallery"):
+    for module in ("sphinx", "myst_parser", "numpydoc", "sphinx_gallery", "sphinx-mathjax-offline"):
         pytest.importorskip(module, reason="the docs extra: pip install '.[docs]'")
-    site = _mirror(tmp_path_factory.mktemp("repository"))
-    out = site / "_build" / "html"
-    env = dict(os.environ, SNAIL_DOCS_EXAMPLES=EXECUTED, MPLBACKEND="Agg")
-    done = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-                           str(site), str(out)], check=False, capture_output=True, text=True, env=env,
-                          timeout=1800)
+    root = tmp_path_factory.mktemp("repository")
+    _mirror(root)
+    # the reader's environment, without a selection of examples: every example runs
+    env = {name: value for name, value in os.environ.items() if name != "SNAIL_DOCS_EXAMPLES"}
+    env["MPLBACKEND"] = "Agg"
+    done = subprocess.run([sys.executable, *COMMAND[1:]], cwd=root, check=False, capture_output=True, text=True,
+                          env=env, timeout=1800)
     warnings = [line for line in done.stderr.splitlines() if "WARNING" in line or "ERROR" in line]
-    return done.returncode, warnings, out, done.stderr
+    return done.returncode, warnings, root / OUT, done.stderr
+
+
+def test_the_tests_build_the_site_as_the_readme_says():
+    for page in (ROOT / "README.md", SITE / "building.md"):
+        assert " ".join(COMMAND) in page.read_text(), page.name
 
 
 def _text(page: Path) -> str:
     return html.unescape(re.sub(r"<[^>]+>", "", page.read_text()))
 
 
+#: What makes a browser load a file when it shows a page: scripts, stylesheets and icons, images, frames.
+_LOADS = re.compile(r'<(?:script|img|iframe|source|video|audio|embed)\b[^>]*?\ssrc="([^"]+)"'
+                    r'|<link\b[^>]*?\shref="([^"]+)"|<object\b[^>]*?\sdata="([^"]+)"', re.IGNORECASE)
+_REMOTE = re.compile(r"^(//|[a-z][a-z0-9+.-]*:)", re.IGNORECASE)  # a host or a scheme: not a file of the site
+
+
+def _pages(out: Path) -> list[Path]:
+    return [page for page in out.rglob("*.html") if not {"_static", "_images", "_sources"} & set(page.parts)]
+
+
+def _loads(page: Path) -> list[str]:
+    return [next(url for url in match if url) for match in _LOADS.findall(page.read_text())]
+
+
+def _local_file(out: Path, page: Path, url: str) -> Path | None:
+    """The file of the built site that ``url`` on ``page`` names, or None if it names none."""
+    target = html.unescape(url).split("#")[0].split("?")[0]
+    path = (page.parent / target).resolve() if target else page.resolve()  # "#...": the page itself
+    return path if path.is_file() and out.resolve() in path.parents else None
+
+
 def test_a_broken_reference_fails_the_build(build):
     code, warnings, _, stderr = build
-    assert code != 0, "a reference to a missing function must fail a build with -W"
+    # 1: the build ran to its end and failed on its warnings (2 would be an error that stopped it)
+    assert code == 1, f"a reference to a missing function must fail a build with -W, exit {code}: {stderr[-3000:]}"
     assert any("no_such_function" in w and "reference target not found" in w for w in warnings), stderr[-3000:]
 
 
@@ -104,13 +135,50 @@ def test_the_page_is_built(build, page):
     assert (out / f"{page}.html").is_file()
 
 
-def test_the_executed_example_has_its_figure_and_output(build):
-    _, _, out, _ = build
-    page = (out / "auto_examples" / f"{EXECUTED}.html").read_text()
-    images = re.findall(rf"sphx_glr_{EXECUTED}_\d+\.png", page)
+def test_the_gallery_has_examples():
+    assert len(EXAMPLES) >= 10
+
+
+@pytest.mark.parametrize("example", EXAMPLES)
+def test_the_example_ran_to_its_end_and_its_page_has_its_figures_and_output(build, example):
+    _, _, out, stderr = build
+    path = out / "auto_examples" / f"{example}.html"
+    page, text = path.read_text(), _text(path)
+    assert "Traceback" not in text, text[text.index("Traceback"):][:2000]
+    images = re.findall(rf"sphx_glr_{example}_\d+\.png", page)
     assert images, "the example's figure is missing from its page"
     assert all((out / "_images" / name).is_file() for name in set(images))
-    assert "runaway" in _text(out / "auto_examples" / f"{EXECUTED}.html")  # its printed output
+    assert 'class="sphx-glr-script-out' in page, "the example's printed output is missing from its page"
+    assert f"examples/{example}.py" not in stderr, stderr[-3000:]  # a failed example is named in the warnings
+
+
+def test_no_page_loads_anything_from_a_network(build):
+    _, _, out, _ = build
+    pages = _pages(out)
+    assert len(pages) > 50
+    remote = [f"{page.relative_to(out)}: {url}" for page in pages for url in _loads(page)
+              if _REMOTE.match(url) and not url.startswith("data:")]
+    missing = [f"{page.relative_to(out)}: {url}" for page in pages for url in _loads(page)
+               if not _REMOTE.match(url) and _local_file(out, page, url) is None]
+    # a CDN named anywhere in a page, a script's configuration included
+    cdn = [f"{page.relative_to(out)}: {host}" for page in pages
+           for host in re.findall(r"(?:https?:)?//([\w.-]+)", page.read_text()) if "cdn" in host.lower()]
+    assert not remote + missing + cdn
+
+
+def test_the_math_renderer_is_served_with_the_site(build):
+    """The equations render offline: each page with math loads MathJax from the site's own files."""
+    _, _, out, _ = build
+    with_math = [page for page in _pages(out) if 'class="math' in page.read_text()]
+    assert len(with_math) >= 5
+    renderers = set()
+    for page in with_math:
+        scripts = [url for url in _loads(page) if "mathjax" in url.lower() and ".js" in url]
+        assert scripts, f"{page.relative_to(out)} has equations but loads no MathJax"
+        renderers |= {_local_file(out, page, url) for url in scripts}
+    assert None not in renderers, "a page loads a MathJax that is not among the built files"
+    # MathJax 3 draws with its own web fonts, which it loads from beside its script
+    assert all(any((script.parent / "output" / "chtml" / "fonts" / "woff-v2").glob("*.woff")) for script in renderers)
 
 
 def _documented_actions(parser: argparse.ArgumentParser) -> list[argparse.Action]:

@@ -4,11 +4,11 @@ Build (offline, warnings are errors), from the repository root::
 
     python -m sphinx -W --keep-going -b html docs/site docs/site/_build/html
 
-The gallery (``examples/``) runs at build time. ``SNAIL_DOCS_EXAMPLES`` chooses
+The gallery (``examples/``) runs at build time, every example by default: that is
+the build the README gives and the tests run. ``SNAIL_DOCS_EXAMPLES`` chooses
 which examples execute (the others are shown without their output):
 
-* unset or ``fast``: every example but the slow ones (``*_slow.py``);
-* ``all``: every example, the slow ones included;
+* unset or ``all``: every example;
 * ``none``: none (the quickest build of the pages);
 * anything else: a regular expression on the example's path
   (``SNAIL_DOCS_EXAMPLES=forces_against``).
@@ -40,6 +40,10 @@ version = release
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.mathjax",
+    # MathJax 3 served with the site, so that the equations render without a network
+    # (sphinx.ext.mathjax alone loads it from a CDN): it copies MathJax into _static/mathjax/
+    # and sets mathjax_path to it, over any mathjax_path given here.
+    "sphinx-mathjax-offline",
     "sphinx.ext.viewcode",
     "numpydoc",
     "myst_parser",
@@ -79,9 +83,8 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 
 # -- sphinx-gallery --------------------------------------------------------------------------------
-_SELECTION = os.environ.get("SNAIL_DOCS_EXAMPLES", "fast").strip() or "fast"
+_SELECTION = os.environ.get("SNAIL_DOCS_EXAMPLES", "all").strip() or "all"
 _PATTERNS = {
-    "fast": r"/plot_(?!.*_slow\.py$)[^/]*\.py$",
     "all": r"/plot_[^/]*\.py$",
     "none": r"^$",
 }
@@ -95,15 +98,20 @@ sphinx_gallery_conf = {
     "remove_config_comments": True,
     "min_reported_time": 1,
     "download_all_examples": False,
-    "only_warn_on_example_error": False,
+    # An example that raises is a warning like any other defect: -W fails the build on it (exit
+    # status 1) once --keep-going has listed every problem, the examples' tracebacks included.
+    "only_warn_on_example_error": True,
     "abort_on_example_error": False,
+    "capture_repr": (),  # the examples print what they show; no repr of a block's last value
+    # No sg_execution_times pages: they load jQuery and DataTables from CDNs, and time the build's machine.
+    "write_computation_times": False,
     "matplotlib_animations": False,
     "run_stale_examples": False,
 }
 try:
     re.compile(sphinx_gallery_conf["filename_pattern"])
 except re.error as err:
-    raise ValueError(f"SNAIL_DOCS_EXAMPLES must be fast, all, none or a regular expression, got "
+    raise ValueError(f"SNAIL_DOCS_EXAMPLES must be all, none or a regular expression, got "
                      f"{_SELECTION!r}: {err}") from err
 
 # -- HTML ------------------------------------------------------------------------------------------

@@ -27,8 +27,9 @@ fig = trajectory_figure(trajectory)
 # numbers that decided it. With smooth walls the inner cylinder rocks down
 # towards contact and the gap keeps closing (as 1/t^2, (3.9)), ever more slowly.
 info = summary(trajectory)
-for key in ("regime", "mean_speed", "status", "reason"):
-    print(f"{key:>12}: {info[key]}")
+for key in ("regime", "mean_speed", "status", "reason"):  # the mean speed down the slope in m/s
+    value = info[key]
+    print(f"{key:>12}: {value:.4g}" if isinstance(value, float) else f"{key:>12}: {value}")
 print("groups:", {k: round(v, 4) for k, v in trajectory.groups.items()})
 
 # %%
@@ -45,6 +46,10 @@ print(f"X_b(10 s) = {same.columns['x_b'][-1] * 1e3:.3f} mm (scene: {trajectory.c
 # %%
 # Every run also estimates how far its quasi-steady Stokes forces can be trusted
 # (see :doc:`/equations_of_motion`): the release swings the inner cylinder past the
-# centre fast enough for the gap Reynolds number to approach the stopping limit.
+# centre fast enough for the reduced gap Reynolds number Re* to pass the limit at
+# which a run stops by default (the scene says ``on_invalid = "warn"``). The report
+# holds numbers (times in s, the others dimensionless) and one sentence,
+# ``force_error_scale``, which says what the force errors are relative to.
 for key, value in trajectory.info["inertia"].items():
-    print(f"{key:>28}: {value:.3g}")
+    shown = f"{value:.3g}" if isinstance(value, int | float) else value
+    print(f"{key:>45}: {shown}")

@@ -68,4 +68,14 @@ ax.set_xlim(0.0, 10.0)
 ax.set_xlabel("t (s)")
 ax.legend(fontsize=8)
 ax.set_title("Steel apparatus, 200 cSt, 2.4 degrees, released from rest", fontsize=10)
-print({key: f"{value:.3g}" for key, value in run.info["inertia"].items()})
+
+# %%
+# What the run reports of it (``Trajectory.info["inertia"]``, and ``summary.json``):
+report = run.info["inertia"]
+print(f"largest Re* {report['max_reduced_reynolds']:.3g} at t = {report['t_at_max_reduced_reynolds']:.3g} s, "
+      f"estimated force error there {report['estimated_force_error_at_max_reduced_reynolds']:.0%}")
+print(f"largest estimated force error {report['max_estimated_force_error']:.0%} "
+      f"at t = {report['t_at_max_estimated_force_error']:.3g} s")
+print(f"the errors are relative to {report['force_error_scale']}")
+print(f"not covered by the estimate: the squeeze Reynolds number, up to {report['max_squeeze_reynolds']:.3g}, "
+      f"and the Stokes number {report['stokes_number']:.3g}")

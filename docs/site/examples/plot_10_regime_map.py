@@ -8,7 +8,7 @@ on the release. Here a 20 x 12 grid of (:math:`s`, initial :math:`\kappa`) at th
 paper's :math:`\Upsilon = \bar\mu = 1`, released straight above the centre, each run
 100 :math:`\tau` long and classified by :func:`dynamics.regime.classify`, the
 rule ``snail run`` and ``snail sweep`` report. ``snail sweep`` runs the same thing
-on dask for thousands of points (:doc:`/sweeps`; the slow example "A parameter
+on dask for thousands of points (:doc:`/sweeps`; the example "A parameter
 sweep on dask" does it from Python).
 """
 
