@@ -54,7 +54,8 @@ less than half the run (measured while writing this script).
 
 Outputs: ``benchmarks/results/accuracy.json`` (all numbers), ``accuracy.md``
 (tables), ``accuracy_pareto.png``, and the compact study
-``dynamics/data/model_choice.json`` that :mod:`dynamics.app.auto` chooses from.
+``dynamics/data/model_choice.json`` that :mod:`dynamics.app.auto` chooses from
+(:func:`model_choice`; ``generators/model_choice.py`` writes it).
 Run ``python -m benchmarks.accuracy`` from the project root (about 10 minutes
 on 2 cores).
 """
@@ -112,7 +113,6 @@ TRAJECTORY_REPEATS = 3
 EQUATIONS_RTOL = 1e-10
 EQUATIONS_METHOD = REFERENCE_METHOD = "radau"
 
-CHOICE_FILE = Path(__file__).resolve().parents[1] / "dynamics" / "data" / "model_choice.json"
 
 
 # -- part A: forces at one instant ---------------------------------------------------------------
@@ -564,7 +564,6 @@ def main(argv=None) -> None:
     results = (rederive(json.loads((RESULTS / "accuracy.json").read_text())) if args.from_json else run())
     write_text(RESULTS / "accuracy.json", json.dumps(results, indent=1) + "\n")  # first: ten minutes of numbers
     choice = model_choice(results)
-    write_text(CHOICE_FILE, json.dumps(choice, indent=None, separators=(",", ":")) + "\n")
     fig = pareto_figure(results, choice)
     save_figure(RESULTS / "accuracy_pareto.png", fig, dpi=110)
     plt.close(fig)

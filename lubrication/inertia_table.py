@@ -1,6 +1,6 @@
 """Tabulated first inertial correction of the wall rotations (generated; do not edit).
 
-Written by ``python -m validation.inertia --table`` in 113 s: one
+Written by ``python generators/inertia_table.py`` (generators/README.md): one
 :func:`lubrication.navier_stokes.first_inertial_correction` per node, on the
 default mesh (:func:`lubrication.stokes.default_mesh`; coefficient error about
 1e-4, measured against the exact small-kappa solution). Columns:

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from dynamics.apparatus import Apparatus, preset
+from dynamics.equations.special import critical_slope, runaway_estimates
 from validation import dynamics_checks
 from validation.checks import comparisons
-from validation.dynamics_checks import critical_slope, runaway_estimates
 
 
 def test_quick_group_passes(tmp_path):

@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
 from scipy.linalg import expm
+from scipy.optimize import brentq
 
 from numerics.engine import (
     END,

@@ -18,9 +18,9 @@ from scipy.integrate import quad
 
 from dynamics.apparatus import preset
 from dynamics.equations.film import mass_balance, rock
-from dynamics.simulation import simulate
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
+from dynamics.simulation import simulate
 from lubrication import Annulus, Fluid, Motion
 from lubrication import film_kernels as fk
 from lubrication.cavitation import cavitating_forces, cavitating_pressure

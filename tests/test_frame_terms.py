@@ -222,7 +222,7 @@ def test_runaway_presses_the_inner_cylinder_out_with_the_centripetal_mass(runawa
     of the products of derivatives leaves about 1e-4 of m (measured 2e-5). The 1 - kappa
     reached differs by about (m_eff/m'_a)^2 (= 5) between the two.
     """
-    from validation.inertia import centripetal_mass
+    from dynamics.analysis import centripetal_mass
 
     ap, runs = runaways
     measured = centripetal_mass(ap, runs[frame_terms].columns, 1.5, 2.5)

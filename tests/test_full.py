@@ -9,9 +9,9 @@ from dynamics.apparatus import Apparatus, preset
 from dynamics.equations import full
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
+from dynamics.equations.special import inertial_time
 from dynamics.simulation import Initial, simulate
 from lubrication.registry import kernel_model
-from validation.dynamics_checks import inertial_time
 
 RTOL = 1e-10
 

@@ -24,7 +24,7 @@ def device(delta_over_a=0.01, s=0.25):
 
 
 def energy_rate(ap, x, z, r_dot, r_ddot, omega_a, omega_b, omega_a_dot, omega_b_dot):
-    """d/dt of the full model's mechanical energy (validation.dynamics_checks.mechanical_energy)."""
+    """d/dt of the full model's mechanical energy (dynamics.analysis.mechanical_energy)."""
     ca, sa = math.cos(ap.alpha), math.sin(ap.alpha)
     return ((ap.M + ap.m_b) * ap.b**2 * omega_b * omega_b_dot
             + ap.m_a_reduced * ap.b * (omega_b_dot * r_dot[0] + omega_b * r_ddot[0])

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from dynamics.analysis import rocking_envelope
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
     ReducedParams,
@@ -28,7 +29,6 @@ from dynamics.equations.special import (
     steady_rolling,
 )
 from dynamics.simulation import Initial, simulate
-from validation.dynamics_checks import rocking_envelope
 
 FIG2 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figure 2
 

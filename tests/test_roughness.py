@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from dynamics.analysis import rolling_statistics
 from dynamics.apparatus import STEEL
 from dynamics.contact import reduced as uniform_contact
 from dynamics.contact.reduced import ContactParams
@@ -40,11 +41,7 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 from dynamics.trajectory import PHASE_CODES
-from validation.rough_speeds import (
-    rolling_statistics,
-    speed_table,
-    speed_table_markdown,
-)
+from validation.rough_speeds import speed_table, speed_table_markdown
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8

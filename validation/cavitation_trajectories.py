@@ -65,8 +65,8 @@ import numpy as np
 from dynamics.apparatus import preset
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.trajectory import Trajectory
 from dynamics.simulation import simulate as run_trajectory
+from dynamics.trajectory import Trajectory
 from lubrication import Annulus, Fluid, Motion
 from lubrication.cavitation import CAVITATION_MODELS, cavitating_pressure
 from lubrication.registry import kernel_model

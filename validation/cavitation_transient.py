@@ -53,8 +53,8 @@ from dynamics.apparatus import preset
 from dynamics.equations.film import mass_balance
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
-from dynamics.trajectory import Trajectory
 from dynamics.simulation import simulate as run_trajectory
+from dynamics.trajectory import Trajectory
 from lubrication.film_transport import Bubble, Feed, TransportedFilm
 from lubrication.registry import kernel_model
 

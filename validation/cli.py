@@ -62,9 +62,8 @@ def _return_freed_blocks_to_the_system() -> None:
 
 def _validate(args) -> int:
     _return_freed_blocks_to_the_system()
-    from numerics.folder import writable_folder
-
     from dynamics.app.command import announce_compiling
+    from numerics.folder import writable_folder
 
     from .suite import GROUPS, run_all
 

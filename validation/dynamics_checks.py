@@ -85,11 +85,10 @@ from __future__ import annotations
 
 import math
 import time
-from typing import NamedTuple
 
 import numpy as np
-from scipy.special import ellipe
 
+from dynamics.analysis import mechanical_energy, rocking_envelope
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import (
@@ -100,8 +99,11 @@ from dynamics.equations.reduced import (
 )
 from dynamics.equations.special import (
     contact_equilibrium,
+    critical_slope,
     decay_exponent,
+    inertial_time,
     rocking_frequency,
+    runaway_estimates,
     runaway_spin_rate,
     sedimentation,
     slow_approach,
@@ -118,13 +120,7 @@ from .checks import Check, Finding, absolute, at_least, at_most, relative
 __all__ = [
     "FIG2",
     "FIG3",
-    "RunawayEstimates",
-    "critical_slope",
-    "inertial_time",
-    "mechanical_energy",
-    "rocking_envelope",
     "run",
-    "runaway_estimates",
 ]
 
 FIG2 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figure 2: rocking
@@ -148,84 +144,6 @@ SPIN_PLANE = ("kappa", "phi", "omega_a", "omega_b")
 
 
 # ------------------------------------------------------------------ closed forms derived here
-
-class RunawayEstimates(NamedTuple):
-    """Mean runaway accelerations of the outer cylinder (m/s^2) and the film's share of the work."""
-
-    paper: float  # M g sin(alpha) / (M + m_b + m_a/2), (3.11)
-    rigid: float  # M g sin(alpha) b^2 / (m_a a^2/2 + (M + m_b) b^2)
-    observed: float  # 2 g sin(alpha)/3, the measured X = g t^2 sin(alpha)/3 (section 4)
-    lossless: float  # a_0 = M g sin(alpha) b^2 / <sqrt(I)>^2, rigid co-rotation in the model
-    dissipated_fraction: float  # f, the share of the work of gravity lost in the film
-    model: float  # (1 - f) a_0
-
-
-def runaway_estimates(apparatus: Apparatus, samples: int = 4096) -> RunawayEstimates:
-    """The runaway accelerations of the module docstring for ``apparatus``.
-
-    ``samples`` equispaced points in chi evaluate the averages behind f, which
-    are periodic and smooth, so the rule converges geometrically.
-    """
-    ap = apparatus
-    g_sin = ap.g * math.sin(ap.alpha)
-    delta, b = ap.delta, ap.b
-    i_a = 0.5 * ap.m_a * ap.a**2
-    i_0 = i_a + (ap.M + ap.m_b) * b**2 + ap.m_eff * delta**2
-    lever = ap.m_a_reduced * b  # m'_a b
-    swing = 2.0 * lever * delta  # B
-    mean_sqrt = 2.0 / math.pi * math.sqrt(i_0 + swing) * ellipe(2.0 * swing / (i_0 + swing))
-    lossless = ap.M * g_sin * b**2 / mean_sqrt**2
-    chi = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
-    inertia = i_0 + swing * np.cos(chi)
-    carried = i_a + ap.m_eff * delta**2 + lever * delta * np.cos(chi)  # J
-    shear = np.mean(np.sin(chi) ** 2 * (carried**2 + i_a**2) * inertia**-3.5)
-    closing = np.mean(inertia**-0.5 * (1.0 - (lever * np.sin(chi)) ** 2 / (ap.m_eff * inertia)))
-    fraction = 9.0 * lever**2 / ap.m_eff * shear / closing
-    return RunawayEstimates(
-        paper=ap.runaway_acceleration,
-        rigid=ap.M * g_sin * b**2 / (i_a + (ap.M + ap.m_b) * b**2),
-        observed=2.0 * g_sin / 3.0,
-        lossless=lossless, dissipated_fraction=float(fraction), model=(1.0 - fraction) * lossless)
-
-
-def mechanical_energy(apparatus: Apparatus, columns: dict) -> np.ndarray:
-    """Kinetic plus potential energy of the full model (J) along a trajectory's columns.
-
-    KE = (1/2)(M + m_b) b^2 Omega_b^2 + m'_a b Omega_b x' + (1/2) m_eff |r'|^2 + (1/4) m_a a^2 Omega_a^2
-    and PE = m'_a g eps cos(phi) - M g sin(alpha) X_b, r = (x, z) = eps (sin chi, cos chi): the
-    energy whose rate of change (2.1)-(2.4) equate to the power of the fluid forces. r' is
-    differentiated along the integrator's steps (hundreds per turn), whose second-order error
-    is far below the energy lost in the film.
-    """
-    ap = apparatus
-    t, eps, chi = columns["t"], columns["eps"], columns["chi"]
-    x_dot = np.gradient(eps * np.sin(chi), t, edge_order=2)
-    z_dot = np.gradient(eps * np.cos(chi), t, edge_order=2)
-    omega_a, omega_b = columns["omega_a"], columns["omega_b"]
-    kinetic = (0.5 * (ap.M + ap.m_b) * ap.b**2 * omega_b**2 + ap.m_a_reduced * ap.b * omega_b * x_dot
-               + 0.5 * ap.m_eff * (x_dot**2 + z_dot**2) + 0.25 * ap.m_a * ap.a**2 * omega_a**2)
-    potential = ap.m_a_reduced * ap.g * eps * np.cos(columns["phi"]) - ap.M * ap.g * math.sin(ap.alpha) * columns["x_b"]
-    return kinetic + potential
-
-
-def critical_slope(apparatus: Apparatus) -> float:
-    """Steepest slope (rad) with a rest point at contact: sin(alpha_c) = m'_a delta / (M b)."""
-    return math.asin(apparatus.m_a_reduced * apparatus.delta / (apparatus.M * apparatus.b))
-
-
-def inertial_time(apparatus: Apparatus) -> float:
-    """t_i / tau = m_eff / (R_0 tau) = Upsilon (m_eff/m_a)(delta/a)^2, R_0 the (2.5) resistance at kappa = 0."""
-    return apparatus.upsilon * (apparatus.m_eff / apparatus.m_a) * apparatus.delta_over_a**2
-
-
-def rocking_envelope(t: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Times and heights of the peaks of |x|, a parabola through each sampled maximum (uniform t)."""
-    ax = np.abs(x)
-    i = np.nonzero((ax[1:-1] >= ax[:-2]) & (ax[1:-1] > ax[2:]))[0] + 1
-    y0, y1, y2 = ax[i - 1], ax[i], ax[i + 1]
-    shift = 0.5 * (y0 - y2) / (y0 - 2.0 * y1 + y2)
-    return t[i] + shift * (t[1] - t[0]), y1 - 0.25 * (y0 - y2) * shift
-
 
 def _zeta(kappa, one_minus_kappa):
     return np.sqrt(one_minus_kappa * (1.0 + kappa))

@@ -41,8 +41,8 @@ W = Omega - chi' the wall rotations relative to the line of centres.
 
 Run ``python -m validation.inertia`` to write ``docs/inertia/`` (figures,
 ``inertia.json``, ``inertia.md``; about nine minutes on two cores);
-``python -m validation.inertia --table`` rebuilds
-:mod:`lubrication.inertia_table` (about two minutes).
+``python generators/inertia_table.py`` rebuilds
+:mod:`lubrication.inertia_table` (generators/README.md).
 """
 
 from __future__ import annotations
@@ -53,10 +53,12 @@ from pathlib import Path
 
 import numpy as np
 
+from dynamics.analysis import centripetal_mass
+
 from .checks import Check, at_least, at_most, relative
 
 __all__ = ["APPARATUS", "DELTAS", "DIRECTIONS", "KAPPAS", "LEVELS", "OILS", "RUNAWAY_MODELS", "RUNAWAY_SLOPES",
-           "SWEEP_REDUCED", "TABLE_DELTAS", "TABLE_KAPPAS", "TABLE_PROBES", "apparatus_frame_force", "build_table",
+           "SWEEP_REDUCED", "TABLE_PROBES", "apparatus_frame_force",
            "centripetal_mass", "checks_of", "continuation_sweeps", "corrected_model_error", "figure",
            "first_order_survey", "run", "runaway_check", "runaway_comparison", "runaway_figure",
            "runaway_trajectories", "small_kappa_comparison", "stokes_numbers", "sweep_plan", "table_accuracy",
@@ -67,59 +69,13 @@ APPARATUS = {"a_m": 0.008, "b_m": 0.01125, "delta_over_a": 0.325 / 0.8}
 DELTAS = (0.01, 0.1, APPARATUS["delta_over_a"])
 KAPPAS = (0.3, 0.6, 0.9)
 
-#: Nodes of :mod:`lubrication.inertia_table`: dense near contact, where the
-#: normalised coefficients change fastest, and across the gaps of interest.
-TABLE_KAPPAS = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999)
-TABLE_DELTAS = (0.01, 0.03, 0.1, 0.2, 0.3, APPARATUS["delta_over_a"], 0.6, 1.0)
 #: Off-node points where the interpolated table is compared with fresh solves.
 TABLE_PROBES = ((0.05, 0.05), (0.45, 0.15), (0.65, 0.35), (0.85, 0.5), (0.93, 0.8), (0.97, 0.25), (0.75, 0.02))
-
-_TABLE_MODULE = Path(__file__).resolve().parents[1] / "lubrication" / "inertia_table.py"
-
 
 def _motions(kappa: float) -> dict[str, tuple[float, float]]:
     """(W_a, W_b) of the study's motions, relative to the line of centres."""
     return {"inner": (1.0, 0.0), "outer": (0.0, 1.0),
             "rolling": ((1.0 - kappa**2) / (1.0 + 2.0 * kappa**2), 1.0)}
-
-
-def _format_array(values: np.ndarray) -> str:
-    return np.array2string(np.asarray(values), separator=", ", precision=17, floatmode="unique",
-                           threshold=100000, max_line_width=100)
-
-
-def build_table(path: str | Path = _TABLE_MODULE) -> Path:
-    """Solve the first inertial correction on the table's nodes and write the table module."""
-    from lubrication.inertia import TABLE_COLUMNS
-    from lubrication.navier_stokes import build_error_table
-    from numerics.files import write_text
-
-    start = time.perf_counter()
-    table = build_error_table(TABLE_KAPPAS, TABLE_DELTAS)
-    elapsed = time.perf_counter() - start
-    text = f'''"""Tabulated first inertial correction of the wall rotations (generated; do not edit).
-
-Written by ``python -m validation.inertia --table`` in {elapsed:.0f} s: one
-:func:`lubrication.navier_stokes.first_inertial_correction` per node, on the
-default mesh (:func:`lubrication.stokes.default_mesh`; coefficient error about
-1e-4, measured against the exact small-kappa solution). Columns:
-:data:`lubrication.inertia.TABLE_COLUMNS`. Used by
-:func:`lubrication.inertia.inertial_error_estimate` with bilinear
-interpolation in (kappa, delta/a); its measured accuracy against fresh solves
-off the nodes is in ``docs/inertia/inertia.md``. Outside the nodes the
-normalised columns are held at the nearest edge (kappa > {TABLE_KAPPAS[-1]},
-delta/a < {TABLE_DELTAS[0]} or > {TABLE_DELTAS[-1]}).
-"""
-
-import numpy as np
-
-KAPPA_NODES = np.array({_format_array(np.array(TABLE_KAPPAS))})
-DELTA_NODES = np.array({_format_array(np.array(TABLE_DELTAS))})
-#: shape (len(KAPPA_NODES), len(DELTA_NODES), {len(TABLE_COLUMNS)})
-TABLE = np.array({_format_array(table)})
-'''
-    return write_text(path, text)
-
 
 
 #: Reduced Reynolds numbers Re* = Re delta/a of the continuation sweeps.
@@ -355,32 +311,6 @@ RUNAWAY_TIMES = (0.02, 0.06, 0.1, 0.25, 0.5, 1.0, 2.0, 3.0)
 RUNAWAY_WINDOW = (2.0, 3.0)
 #: The late acceleration is fitted to X_b from this time on (s), after the first swing.
 RUNAWAY_FIT_START = 1.0
-
-
-def centripetal_mass(apparatus, columns: dict, t1: float, t2: float) -> float:
-    """The mass m on the centripetal term of (2.2) that a run's rows imply over [t1, t2].
-
-    Along e_eps, (2.2) with the squeeze force (2.5) of the closed forms reads
-
-        m_eff eps'' - m eps chi'^2 = -(12 nu a m''_a / delta^2) q' - m'_a g cos(phi) - m'_a b Omega_b' sin(chi),
-
-    q = kappa / zeta. Integrated over the window with the trajectory's own rows
-    (trapezoids; the rolling term as a Stieltjes sum over Omega_b) it gives m:
-    m_eff for (2.1)-(2.2) as printed, m'_a with ``frame_terms = "quasi-steady"``
-    (while chi' lies between the wall rates). The rows must resolve a turn.
-    """
-    ap = apparatus
-    keep = (columns["t"] >= t1) & (columns["t"] <= t2)
-    t, kappa = columns["t"][keep], columns["kappa"][keep]
-    q = kappa / np.sqrt(columns["one_minus_kappa"][keep] * (1.0 + kappa))
-    eps_dot = columns["kappa_dot"][keep] * ap.delta
-    squeeze = 12.0 * ap.nu * ap.a * ap.m_a_displaced / ap.delta**2 * (q[-1] - q[0])
-    gravity = -ap.m_a_reduced * ap.g * np.trapezoid(np.cos(columns["phi"][keep]), t)
-    chi = columns["chi"][keep]
-    rolling = -ap.m_a_reduced * ap.b * np.sum(0.5 * (np.sin(chi[1:]) + np.sin(chi[:-1]))
-                                              * np.diff(columns["omega_b"][keep]))
-    centripetal = np.trapezoid(columns["eps"][keep] * columns["phi_dot"][keep] ** 2, t)
-    return float((ap.m_eff * (eps_dot[-1] - eps_dot[0]) + squeeze - gravity - rolling) / centripetal)
 
 
 def _runaway_series(apparatus, columns: dict) -> dict:
@@ -950,16 +880,11 @@ def write_outputs(result: dict, outdir: str | Path) -> list[Path]:
 
 
 if __name__ == "__main__":
-    import sys
-
-    if "--table" in sys.argv[1:]:
-        print(f"wrote {build_table()}")
-    else:
-        outdir = Path(__file__).resolve().parents[1] / "docs" / "inertia"
-        result = run()
-        for path in write_outputs(result, outdir):
-            print(f"wrote {path}")
-        failed = [c["name"] for c in result["checks"] if not c["passed"]]
-        print(f"{len(result['checks']) - len(failed)} of {len(result['checks'])} checks passed")
-        for name in failed:
-            print(f"FAILED: {name}")
+    outdir = Path(__file__).resolve().parents[1] / "docs" / "inertia"
+    result = run()
+    for path in write_outputs(result, outdir):
+        print(f"wrote {path}")
+    failed = [c["name"] for c in result["checks"] if not c["passed"]]
+    print(f"{len(result['checks']) - len(failed)} of {len(result['checks'])} checks passed")
+    for name in failed:
+        print(f"FAILED: {name}")

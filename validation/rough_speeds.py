@@ -8,11 +8,11 @@ steady rate (5.10)-(5.11) that the speed law (6.1) uses.
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
 import numpy as np
 
+from dynamics.analysis import rolling_statistics
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact
 from dynamics.contact.steady import steady_state
@@ -21,7 +21,7 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 
-__all__ = ["SpeedRow", "rolling_statistics", "speed_table", "speed_table_markdown"]
+__all__ = ["SpeedRow", "speed_table", "speed_table_markdown"]
 
 
 class SpeedRow(NamedTuple):
@@ -34,41 +34,6 @@ class SpeedRow(NamedTuple):
     fluctuation: float  # mean over seeds of the time standard deviation of Omega_b
     switch_rate: float  # mean over seeds of phase switches per tau
     seeds: int
-
-
-def rolling_statistics(trajectory, t_settle: float) -> tuple[float, float, float]:
-    """Mean rolling rate, time standard deviation of Omega_b and switches per unit time after ``t_settle``.
-
-    Parameters
-    ----------
-    trajectory : dynamics.simulation.Trajectory
-        A dimensionless contact run (``simulate`` with :class:`ReducedParams`),
-        whose X_b is in b: times in tau, rates in 1/tau.
-    t_settle : float
-        Start of the average (tau), before the end of the run.
-
-    Returns
-    -------
-    mean, fluctuation, switch_rate : float
-        (X_b(t_end) - X_b(t_settle)) / (t_end - t_settle) (1/tau); the
-        time-weighted (trapezoidal) standard deviation of Omega_b about it over
-        the rows (1/tau); phase switches per tau.
-    """
-    if not trajectory.dimensionless:
-        msg = ("rolling_statistics needs a dimensionless trajectory (simulate with ReducedParams), where X_b "
-               "is the angle turned")
-        raise ValueError(msg)
-    cols = trajectory.columns
-    t, omega_b, x_b = cols["t"], cols["omega_b"], cols["x_b"]
-    span = t[-1] - t_settle
-    if not span > 0.0:
-        msg = f"t_settle must be before the end of the run, t = {t[-1]:.6g}; got {t_settle!r}"
-        raise ValueError(msg)
-    mean = (x_b[-1] - np.interp(t_settle, t, x_b)) / span
-    late = t >= t_settle
-    variance = np.trapezoid((omega_b[late] - mean) ** 2, t[late]) / span
-    switches = sum(sw["t"] >= t_settle for sw in trajectory.info.get("switches", ()))
-    return float(mean), math.sqrt(max(float(variance), 0.0)), switches / span
 
 
 def speed_table(params: ReducedParams, mean: ContactParams, correlation: float, amplitudes, seeds, *,

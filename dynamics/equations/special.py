@@ -18,18 +18,23 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from scipy.special import ellipe
 
 from dynamics.equations.reduced import stretched_to_kappa
 from lubrication.geometry import check_finite, check_range
 
 __all__ = [
+    "RunawayEstimates",
     "SlowApproach",
     "SteadyRolling",
     "contact_equilibrium",
+    "critical_slope",
     "decay_exponent",
+    "inertial_time",
     "pushed_pendulum_energy",
     "pushed_pendulum_rhs",
     "rocking_frequency",
+    "runaway_estimates",
     "runaway_spin_rate",
     "sedimentation",
     "slow_approach",
@@ -170,3 +175,58 @@ def slow_approach(t, zeta0: float, s: float, mu_ratio: float) -> SlowApproach:
 def runaway_spin_rate(s: float, upsilon: float, mu_ratio: float) -> float:
     """Slope of the runaway (3.11): Omega_a ~ Omega_b ~ phi' ~ s t / ((mu_ + 1/2) Upsilon)."""
     return s / ((mu_ratio + 0.5) * upsilon)
+
+
+# -- the full model: a rest point at contact, the inertial time, the runaway's acceleration ----------
+
+def critical_slope(apparatus) -> float:
+    """Steepest slope (rad) with a rest point at contact: sin(alpha_c) = m'_a delta / (M b)."""
+    return math.asin(apparatus.m_a_reduced * apparatus.delta / (apparatus.M * apparatus.b))
+
+
+def inertial_time(apparatus) -> float:
+    """t_i / tau = m_eff / (R_0 tau) = Upsilon (m_eff/m_a)(delta/a)^2, R_0 the (2.5) resistance at kappa = 0."""
+    return apparatus.upsilon * (apparatus.m_eff / apparatus.m_a) * apparatus.delta_over_a**2
+
+
+class RunawayEstimates(NamedTuple):
+    """Mean runaway accelerations of the outer cylinder (m/s^2) and the film's share of the work."""
+
+    paper: float  # M g sin(alpha) / (M + m_b + m_a/2), (3.11)
+    rigid: float  # M g sin(alpha) b^2 / (m_a a^2/2 + (M + m_b) b^2)
+    observed: float  # 2 g sin(alpha)/3, the measured X = g t^2 sin(alpha)/3 (section 4)
+    lossless: float  # a_0 = M g sin(alpha) b^2 / <sqrt(I)>^2, rigid co-rotation in the model
+    dissipated_fraction: float  # f, the share of the work of gravity lost in the film
+    model: float  # (1 - f) a_0
+
+
+def runaway_estimates(apparatus, samples: int = 4096) -> RunawayEstimates:
+    """The mean runaway accelerations of the full model for ``apparatus`` (:class:`RunawayEstimates`).
+
+    Derived in ``validation.dynamics_checks``'s docstring: with the fluid's dissipation as a
+    perturbation of rigid co-rotation, a_0 = M g sin(alpha) b^2/<sqrt(I)>^2 over the turn of the line
+    of centres, less the share f of the work of gravity lost in the film.
+
+    ``samples`` equispaced points in chi evaluate the averages behind f, which
+    are periodic and smooth, so the rule converges geometrically.
+    """
+    ap = apparatus
+    g_sin = ap.g * math.sin(ap.alpha)
+    delta, b = ap.delta, ap.b
+    i_a = 0.5 * ap.m_a * ap.a**2
+    i_0 = i_a + (ap.M + ap.m_b) * b**2 + ap.m_eff * delta**2
+    lever = ap.m_a_reduced * b  # m'_a b
+    swing = 2.0 * lever * delta  # B
+    mean_sqrt = 2.0 / math.pi * math.sqrt(i_0 + swing) * ellipe(2.0 * swing / (i_0 + swing))
+    lossless = ap.M * g_sin * b**2 / mean_sqrt**2
+    chi = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
+    inertia = i_0 + swing * np.cos(chi)
+    carried = i_a + ap.m_eff * delta**2 + lever * delta * np.cos(chi)  # J
+    shear = np.mean(np.sin(chi) ** 2 * (carried**2 + i_a**2) * inertia**-3.5)
+    closing = np.mean(inertia**-0.5 * (1.0 - (lever * np.sin(chi)) ** 2 / (ap.m_eff * inertia)))
+    fraction = 9.0 * lever**2 / ap.m_eff * shear / closing
+    return RunawayEstimates(
+        paper=ap.runaway_acceleration,
+        rigid=ap.M * g_sin * b**2 / (i_a + (ap.M + ap.m_b) * b**2),
+        observed=2.0 * g_sin / 3.0,
+        lossless=lossless, dissipated_fraction=float(fraction), model=(1.0 - fraction) * lossless)

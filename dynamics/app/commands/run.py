@@ -49,8 +49,8 @@ def _run_scene(args) -> int:
 
 def _run_scene_drawing(args, figures) -> int:
     from dynamics.app.output import write_outputs
-    from dynamics.equations.limits import ValidityWarning
     from dynamics.app.run import run_scene
+    from dynamics.equations.limits import ValidityWarning
     from dynamics.scenes import SceneError, load_scene, resolved_toml
     from numerics.folder import FolderError, OutputFolder, held_signals
 
