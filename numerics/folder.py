@@ -94,6 +94,9 @@ def held_signals():
 class OutputFolder:
     """Context manager for writing a run's outputs into ``path`` as one set.
 
+    ``names`` are the files of a set, and ``summary`` the file and the keys that mark a
+    folder as holding a previous set (a run's by default; another command names its own).
+
     On entry the path is checked, the lock taken and an empty staging folder
     made (so an unwritable place is found before anything runs); write into
     :attr:`staging` and call :meth:`commit`. On exit without a commit the
@@ -107,7 +110,9 @@ class OutputFolder:
         is writing.
     """
 
-    def __init__(self, path: str | os.PathLike):
+    def __init__(self, path: str | os.PathLike, names: frozenset = OUTPUT_NAMES,
+                 summary: tuple[str, frozenset] = ("summary.json", frozenset({"status", "forces"}))):
+        self.names, self.summary = frozenset(names), summary
         self.path = _absolute(path)
         if self.path.is_symlink():  # follow a link: the set replaces the folder it points to, not the link
             self.path = Path(os.path.realpath(self.path))
@@ -164,14 +169,15 @@ class OutputFolder:
             raise FolderError(msg)
         if self.path.is_dir():
             entries = list(self.path.iterdir())
-            others = sorted(p.name for p in entries if p.name not in OUTPUT_NAMES or not p.is_file() or p.is_symlink())
+            others = sorted(p.name for p in entries if p.name not in self.names or not p.is_file() or p.is_symlink())
             if others:
                 shown = ", ".join(others[:5]) + (", ..." if len(others) > 5 else "")
                 msg = (f"{self.path} holds files that are not a run's outputs ({shown}); a run replaces "
                        "its folder whole, so choose an empty or new folder")
                 raise FolderError(msg)
-            if entries and not _is_summary(self.path / "summary.json"):
-                msg = (f"{self.path} holds {', '.join(sorted(p.name for p in entries))} but no summary.json of a run: "
+            name, keys = self.summary
+            if entries and not _is_summary(self.path / name, keys):
+                msg = (f"{self.path} holds {', '.join(sorted(p.name for p in entries))} but no {name} of a run: "
                        "not a previous output set, so it is not replaced; choose an empty or new folder")
                 raise FolderError(msg)
 
@@ -194,10 +200,10 @@ class OutputFolder:
             self._lock_fd = None
 
 
-def _is_summary(path: Path) -> bool:
-    """Whether ``path`` is the summary.json of a run: a file holding a JSON object with a status and forces."""
+def _is_summary(path: Path, keys: frozenset) -> bool:
+    """Whether ``path`` is the summary of a previous set: a file holding a JSON object with ``keys``."""
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return False
-    return isinstance(data, dict) and {"status", "forces"} <= set(data)
+    return isinstance(data, dict) and keys <= set(data)
