@@ -4,13 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from lubrication.geometry import MAX_RATE
 from numerics.keys import check_fields, key
 
 __all__ = ["MAX_RATE", "Initial"]
 
-# Rates beyond a million per second (or per tau) are no release of a rolling device: bounded so
-# that the forces and Reynolds numbers they give stay finite numbers.
-MAX_RATE = 1e6
 _RATE = {"dimension": "1 / [time]", "unit": "rad/s", "example": "1 rad/s", "reduced_unit": "rad/tau",
          "low": -MAX_RATE, "high": MAX_RATE}
 

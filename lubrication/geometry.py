@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import astuple, dataclass, field
 
-__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MIN_ONE_MINUS_KAPPA", "NotANumberError", "RESISTANCE_NAMES",
+__all__ = ["Annulus", "Fluid", "Motion", "FluidForces", "MAX_RATE", "MIN_ONE_MINUS_KAPPA", "NotANumberError", "RESISTANCE_NAMES",
            "Resistance", "check_finite", "check_range"]
 
 #: The five resistance coefficients of a full film, in the order every table and array of
@@ -152,9 +152,15 @@ class Fluid:
         return self.rho * self.nu
 
 
+# Rates beyond a million per second are no motion of a rolling device: bounded so that the forces and
+# Reynolds numbers they give stay finite numbers.
+MAX_RATE = 1e6
+
+
 @dataclass(frozen=True)
 class Motion:
-    """Instantaneous velocities: eps' (m/s), chi', Omega_a, Omega_b (rad/s)."""
+    """Instantaneous velocities: eps' (m/s), chi', Omega_a, Omega_b (rad/s), each of size at most
+    :data:`MAX_RATE`."""
 
     eps_dot: float = 0.0
     chi_dot: float = 0.0
@@ -163,7 +169,8 @@ class Motion:
 
     def __post_init__(self):
         for name in ("eps_dot", "chi_dot", "omega_a", "omega_b"):
-            check_finite(name, getattr(self, name))
+            check_range(name, getattr(self, name), -MAX_RATE, MAX_RATE, high_open=False,
+                        unit="m/s" if name == "eps_dot" else "rad/s")
 
     @property
     def w_a(self) -> float:

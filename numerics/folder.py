@@ -22,6 +22,7 @@ import os
 import shutil
 import signal
 import tempfile
+import threading
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -75,7 +76,11 @@ def writable_folder(path: str | os.PathLike) -> Path:
 
 @contextmanager
 def held_signals():
-    """Hold SIGINT and SIGTERM back for the duration; deliver the first one afterwards."""
+    """Hold SIGINT and SIGTERM back for the duration; deliver the first one afterwards (in the main thread,
+    the only one signals reach)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
     received: list[int] = []
 
     def note(signum, _frame):

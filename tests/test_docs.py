@@ -234,6 +234,21 @@ def test_the_api_reference_documents_what_the_module_exports(build, module):
     assert not missing
 
 
+def test_the_api_reference_lists_every_public_module():
+    """Every module of the three packages whose name has no leading underscore has its page, and no page is
+    of a module that is gone."""
+    conf = (SITE / "conf.py").read_text()
+    listed = set(re.findall(r'"((?:lubrication|dynamics|numerics)[\w.]*)"', conf[conf.index("snail_api_groups"):]))
+    modules = set()
+    for package in ("lubrication", "dynamics", "numerics"):
+        for path in (ROOT / package).rglob("*.py"):
+            parts = path.relative_to(ROOT).with_suffix("").parts
+            parts = parts[:-1] if parts[-1] == "__init__" else parts
+            if not any(part.startswith("_") for part in parts):
+                modules.add(".".join(parts))
+    assert sorted(modules - listed) == [] and sorted(listed - modules) == []
+
+
 PAGES_WITH_CODE = ["index.md", "getting_started.md"]
 BLOCKS = [(page, code) for page in PAGES_WITH_CODE
           for code in re.findall(r"```python\n(.*?)```", (SITE / page).read_text(), flags=re.DOTALL)]

@@ -423,7 +423,7 @@ def test_result_and_events():
     assert traj.nfev > 0 and traj.njev > 0 and traj.steps > 0
     # A terminating event appends its state to t_eval's samples.
     traj = run(ReducedParams(0.0, 1.0, 1.0), 100.0, 0.0, math.pi, t_eval=t_eval, gap_floor=0.01)
-    assert traj.status == "stopped" and traj.event == "gap_floor" and traj.success
+    assert traj.status == "stopped" and traj.event == "gap_floor" and not traj.success
     assert traj.rows[-1] == "event:gap_floor+end" and set(traj.rows[1:-1]) == {"sample"}
     np.testing.assert_array_equal(traj.t[:-1], t_eval[:traj.t.size - 1])
     assert traj.columns["one_minus_kappa"][-1] == pytest.approx(0.01, rel=1e-9)

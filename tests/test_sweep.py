@@ -194,3 +194,33 @@ def test_regime_map_pools_the_other_axes():
     fixed = plot_regime_map(rows, "groups.s", "initial.kappa", where={"groups.upsilon": 2.1})
     assert legend(fixed) == ["rocking", "runaway", "edge of rocking", "edge of runaway"]
     assert math.isnan(slope_limits([])["lowest_runaway_s"])
+
+
+@pytest.mark.parametrize("stage", ["starting 2 workers", "loading the batch runner"])
+def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage):
+    """Ctrl-C while the cluster starts (dask cannot close a half-started one) and while the batch runner
+    compiles (on a worker: numba cannot be stopped inside a compile): exit 130 within seconds, no traceback."""
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[1] / "dynamics" / "app" / "sweeps" / "examples"
+    proc = subprocess.Popen([sys.executable, "-m", "dynamics.app.cli", "sweep", str(examples / "slope_kappa.toml"),
+                             "-o", str(tmp_path / "out"), "--workers", "2"],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    try:
+        for line in proc.stderr:
+            if stage in line:
+                break
+        time.sleep(0.5)  # inside the stage, past its first imports
+        proc.send_signal(signal.SIGINT)
+        start = time.perf_counter()
+        err = proc.stderr.read()
+        proc.wait(timeout=60)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    assert time.perf_counter() - start < 30

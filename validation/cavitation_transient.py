@@ -9,7 +9,7 @@ release of the steel apparatus (200 cSt, kappa = 0.5 and phi = 0.5 at rest, the
 film rupturing ``PRESSURE_DROP`` = 3 Pa below the 1 atm reference, a film with
 bubbles in it) is integrated three ways:
 
-* ``old``: the quasi-static JFO force law (:func:`dynamics.equations.forces.reynolds`);
+* ``old``: the quasi-static JFO force law (the registered model "reynolds" with ``cavitation = "jfo"``);
 * ``feed``: the transported film of :mod:`lubrication.film_transport` (the void of
   each of the N cells in the state, :func:`dynamics.simulation.simulate` with the film as its forces)
   with the same feed: only the film's memory differs from ``old``;

@@ -11,7 +11,8 @@ written as ``<tmp>``; ``tests/test_faults.py`` runs every case and checks that t
 stored table is the one the cases give now.
 
 Faults that need a second process (two runs into one folder, Ctrl-C, a second
-Ctrl-C, SIGTERM) are exercised by ``tests/test_run_outputs.py`` and listed in
+Ctrl-C, SIGTERM, Ctrl-C in a sweep) are exercised by ``tests/test_run_outputs.py``
+and ``tests/test_sweep.py`` and listed in
 :data:`PROCESS_FAULTS` with what each gets.
 """
 
@@ -53,6 +54,16 @@ def _api(name):
             Annulus(a="0.008", b=0.01125)
         elif name == "a rate as a string":
             Motion(chi_dot="1")
+        elif name == "rate 1e308":
+            Motion(chi_dot=1e308)
+        elif name == "finite elements near contact":
+            from lubrication import fluid_forces
+            fluid_forces(Annulus.from_kappa(0.008, 0.01125, 1.0 - 1e-9), Motion(-1e-5, 0.2, 1.0, 0.0),
+                         Fluid(nu=2e-4, rho=960.0), "stokes")
+        elif name == "exact forces":
+            from lubrication import stokes_exact_forces
+            stokes_exact_forces(Annulus.from_kappa(0.008, 0.01125, 0.5), Motion(-1e-5, 0.2, 1.0, 0.0),
+                                Fluid(nu=2e-4, rho=960.0))
         elif name == "a density as a string":
             Fluid(nu=2e-4, rho="960")
         elif name == "max_steps 0":
@@ -165,8 +176,16 @@ CASES: tuple[Case, ...] = (
                                                                   "--kappa", "0.5")),
     Case("forces: b/a overflows", "exit 2", ("finite ratio b/a",), ("forces", "--a", "1e-300", "--b", "1e300",
                                                                   "--kappa", "0.5")),
-    Case("forces: cavitation with closed forms", "exit 2", ("needs the Reynolds solver",),
+    Case("forces: cavitation with the default (exact Stokes) forces", "exit 2", ("needs the model 'reynolds'",),
          ("forces", *GEOMETRY, "--kappa", "0.5", "--cavitation", "jfo")),
+    Case("forces: finite elements at 1 - kappa = 1e-12 (f_chi 100 times too large)", "exit 2",
+         ("kappa", "stokes-exact"),
+         ("forces", "--model", "stokes", *GEOMETRY, "--kappa", "0.999999999999", "--eps-dot", "-1e-5", "--chi-dot",
+          "0.2", "--omega-a", "1")),
+    Case("forces: every model at delta/a = 9999 (8 GB, never finished)", "exit 2", ("delta_over_a", "[0.0001, 10]"),
+         ("forces", "--model", "all", "--a", "0.001", "--b", "10", "--kappa", "0.5")),
+    Case("forces: flow folder in /proc (failed after the solve)", "exit 2", ("--flow /proc/x",),
+         ("forces", "--model", "stokes", *GEOMETRY, "--kappa", "0.5", "--flow", "/proc/x")),
     Case("forces: negative reference pressure", "exit 2", ("--p-ref must be in (0, inf) Pa",),
          ("forces", *GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--cavitation", "jfo", "--p-ref", "-1")),
     Case("forces: not a number", "exit 2", ("not a finite number",), ("forces", *GEOMETRY, "--kappa", "abc")),
@@ -174,6 +193,11 @@ CASES: tuple[Case, ...] = (
          call=_api("a length as a string")),
     Case("API: Motion(chi_dot='1')", "NotANumberError", ("chi_dot must be a finite number",),
          call=_api("a rate as a string")),
+    Case("API: Motion(chi_dot=1e308) (infinite forces)", "ValueError", ("chi_dot",), call=_api("rate 1e308")),
+    Case("API: finite-element forces at 1 - kappa = 1e-9 (f_chi 71 % low)", "ValueError", ("kappa",),
+         call=_api("finite elements near contact")),
+    Case("API: lubrication.stokes_exact_forces on an annulus (a numba typing error)", "no error", (),
+         call=_api("exact forces")),
     Case("API: Fluid(rho='960')", "NotANumberError", ("rho must be a finite number",),
          call=_api("a density as a string")),
     Case("API: simulate with max_steps=0", "ValueError", ("max_steps must be an integer in [1, 1e+07]",),
@@ -196,7 +220,8 @@ CASES: tuple[Case, ...] = (
 )
 
 
-#: Faults exercised in subprocesses by tests/test_run_outputs.py: (what was tried, what it gets).
+#: Faults exercised in subprocesses by tests/test_run_outputs.py and tests/test_sweep.py: (what was tried,
+#: what it gets).
 PROCESS_FAULTS = (
     ("a second snail run into a folder another run is writing", "exit 2 at once: 'another run is writing to "
      "DIR'; the first run's set is untouched"),
@@ -205,6 +230,10 @@ PROCESS_FAULTS = (
     ("Ctrl-C twice", "exit 1 or 130; the folder holds either the previous complete set or the new one, never a "
      "mixture, and no staging folder is left"),
     ("SIGTERM during a run", "as Ctrl-C, the reason naming SIGTERM"),
+    ("Ctrl-C while a sweep starts its cluster (one time in ten a traceback)", "exit 130, 'interrupted', no "
+     "traceback: the signal waits until the cluster is up, then closes it"),
+    ("Ctrl-C while a sweep compiles its batch runner (no answer until the compile ended)", "exit 130 within "
+     "seconds: the compile runs on a worker, closed with the cluster"),
 )
 
 
@@ -253,6 +282,7 @@ def run_case(case: Case) -> Outcome:
                 code = exit_.code
         text = (err.getvalue() + out.getvalue()).replace(str(tmp), "<tmp>")
         text = re.sub(r"steps in [0-9.]+ s", "steps in <time> s", text)  # wall times vary from run to run
+        text = re.sub(r"snail \w+: compiling [^\n]*\n", "", text)  # only when numba's cache is cold
         text = text.replace(f"[1, {max_workers()}] (this machine's cores)", "[1, <cores>] (this machine's cores)")
         left = code == 2 and (tmp / "out").exists()  # refused input leaves nothing; a stopped run keeps its data
         intact = (tmp / "full" / "notes.txt").read_text() == "keep me" and (tmp / "file").read_text() == "a file"
@@ -271,7 +301,8 @@ def table(outcomes) -> str:
         message = (message[:160] + "...") if len(message) > 160 else message
         lines.append(f"| {o.case.what} | {o.case.expected} | {o.got} | {message.replace('|', '/')} | "
                      f"{'yes' if o.passed else '**NO**'} |")
-    lines += ["", "Faults that need a second process, run by `tests/test_run_outputs.py`:", "",
+    lines += ["", "Faults that need a second process, run by `tests/test_run_outputs.py` and `tests/test_sweep.py`:",
+              "",
               "| what was tried | what it gets |", "|---|---|"]
     lines += [f"| {what} | {gets} |" for what, gets in PROCESS_FAULTS]
     return "\n".join(lines) + "\n"

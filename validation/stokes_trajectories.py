@@ -2,7 +2,7 @@ r"""How much do trajectories change when the lubrication forms are replaced by f
 
 The paper's apparatus is not thin: delta/a = 0.406 for both the steel and the
 aluminium device. The closed forms (2.5)-(2.7) are the leading order in delta/a;
-the exact 2-D Stokes forces of :func:`dynamics.equations.forces.stokes_exact` hold at
+the exact 2-D Stokes forces of :func:`lubrication.stokes_exact.stokes_exact_forces` hold at
 any delta/a. Here the
 full model (2.1)-(2.4) is integrated with both, from the same start (kappa = 0.5,
 phi = 0.5, at rest), for the paper's oils (50, 200 and 500 cSt) and slopes, for

@@ -132,22 +132,23 @@ html_show_sourcelink = False
 # -- the API reference (pages written into api/generated/ by the snail_docs extension) -------------------
 snail_api_groups = [
     ("Fluid forces for one instant", [
-        "lubrication", "lubrication.registry", "lubrication.kernels", "lubrication.geometry", "lubrication.closed_form",
+        "lubrication", "lubrication.registry", "lubrication.spec", "lubrication.kernels", "lubrication.geometry", "lubrication.closed_form",
         "lubrication.reynolds", "lubrication.cavitation", "lubrication.stokes_exact", "lubrication.stokes",
         "lubrication.reynolds2d", "lubrication.finite_length", "lubrication.stokes3d",
-        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film_transport", "numerics.files",
+        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film", "lubrication.film_transport", "numerics.files",
     ]),
     ("Compiled kernels of the force models", [
         "lubrication.reynolds_kernels", "lubrication.cavitation_kernels", "lubrication.reynolds2d_kernels",
-        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.film_kernels", "numerics.jit",
+        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.film_kernels", "numerics",
+        "numerics.jit", "numerics.stamps",
     ]),
     ("Simulation", [
-        "dynamics", "dynamics.simulation", "dynamics.regime", "dynamics.initial", "dynamics.apparatus",
+        "dynamics", "dynamics.simulation", "dynamics.trajectory", "dynamics.analysis", "dynamics.regime", "dynamics.initial", "dynamics.apparatus",
         "numerics.keys",
     ]),
     ("Equations of motion", [
         "dynamics.equations", "dynamics.equations.full", "dynamics.equations.reduced",
-        "dynamics.equations.forces", "dynamics.equations.special", "dynamics.equations.limits",
+        "dynamics.equations.special", "dynamics.equations.limits",
         "dynamics.equations.film",
     ]),
     ("Rough contact", [
@@ -166,6 +167,7 @@ snail_api_groups = [
         "dynamics.app.auto", "numerics.folder", "dynamics.app.cli", "dynamics.app.precompile", "dynamics.app.sweeps",
         "dynamics.app.sweeps.spec", "dynamics.app.sweeps.point", "dynamics.app.sweeps.compiled",
         "dynamics.app.sweeps.batch", "dynamics.app.sweeps.store", "dynamics.app.sweeps.run",
-        "dynamics.app.sweeps.plot", "dynamics.app.commands.forces", "dynamics.app.commands.run", "dynamics.app.commands.sweep", "dynamics.app.command",
+        "dynamics.app.sweeps.plot", "dynamics.app.command", "dynamics.app.commands", "dynamics.app.commands.forces", "dynamics.app.commands.run",
+        "dynamics.app.commands.sweep", "dynamics.app.commands.fit", "dynamics.fit",
     ]),
 ]

@@ -49,7 +49,7 @@ class Choice:
         Force model ("closed-form", "reynolds", "stokes-exact") or equations
         ("reduced", "full").
     options : dict
-        Options of the force model's adapter (:mod:`dynamics.equations.forces`).
+        Options of the registered force model (:mod:`lubrication.registry`).
     error : float or None
         The measured error the choice rests on (relative; see the module
         docstring); None when the choice follows from another one.
@@ -145,7 +145,7 @@ def choose_forces(tolerance: float, delta_over_a: float, kappa_max: float, *,
     Returns
     -------
     Choice
-        ``model`` is a :mod:`dynamics.equations.forces` name. Cost is the measured
+        ``model`` is a :mod:`lubrication.registry` name. Cost is the measured
         time of one evaluation from jitted code, the largest over the band.
         Candidates are the models a right-hand side can call: closed forms,
         Reynolds and the exact Stokes solution; the finite-element solve is

@@ -70,6 +70,9 @@ def _terminate(signum, _frame):
     raise Terminated
 
 
+_terminate.interrupts_runs = True  # inside an integration the engine takes SIGTERM over (numerics.engine)
+
+
 #: Loggers whose messages a command shows on standard error, and from which level: the project's warnings, and
 #: the notice of a table built on first use (a minute of silence otherwise).
 _SHOWN = {"numerics": logging.WARNING, "lubrication": logging.WARNING, "dynamics": logging.WARNING,

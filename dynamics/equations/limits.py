@@ -173,8 +173,8 @@ def estimated_force_error(apparatus, columns: dict) -> np.ndarray:
 def first_order_force_over_weight(apparatus, columns: dict) -> np.ndarray:
     """|f_eps^(1)| / (m'_a g): the first inertial correction of the force at each row, against the buoyant weight.
 
-    :func:`lubrication.inertia.first_order_f_eps`; what ``closed_form(inertia=True)``
-    and ``stokes_exact(inertia=True)`` add (:mod:`dynamics.equations.forces`).
+    :func:`lubrication.inertia.first_order_f_eps`; what ``inertia = "first-order"`` adds to the
+    forces of a trajectory (:func:`lubrication.registry.kernel_model`).
     """
     from lubrication.inertia import first_order_f_eps
 

@@ -207,7 +207,9 @@ class Interrupts:
 
     A run checks it between chunks of steps and stops there with what it
     computed. Only in the main thread, and only for a signal whose handler is
-    the default one (a program that handles a signal itself keeps it).
+    the default one or says it stops a program as Ctrl-C does (an attribute
+    ``interrupts_runs`` set true, as the command line's SIGTERM handler has): a
+    program that handles a signal otherwise keeps it.
     """
 
     def __init__(self):
@@ -217,7 +219,8 @@ class Interrupts:
     def __enter__(self):
         if threading.current_thread() is threading.main_thread():
             for sig, default in ((signal.SIGINT, signal.default_int_handler), (signal.SIGTERM, signal.SIG_DFL)):
-                if signal.getsignal(sig) is default:
+                handler = signal.getsignal(sig)
+                if handler is default or getattr(handler, "interrupts_runs", False):
                     self._previous[sig] = signal.signal(sig, self._note)
         return self
 

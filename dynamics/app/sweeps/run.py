@@ -38,7 +38,7 @@ from dynamics.app.sweeps.store import (
 )
 from dynamics.scenes import parse_scene
 from numerics.files import write_json
-from numerics.jit import compile_watch
+from numerics.folder import held_signals
 
 __all__ = ["BATCHES_PER_WORKER", "MAX_BATCH", "SweepResult", "max_workers", "run_sweep"]
 
@@ -79,18 +79,23 @@ def _batches(todo: list[dict], workers: int, batch_size: int | None) -> list[lis
     return [todo[i:i + batch_size] for i in range(0, len(todo), batch_size)]
 
 
-def _warm_batch(sweep: Sweep, point: dict) -> None:
-    """Compile (or load) the batch's loop here, once, before the workers load it, if the sweep's points take it."""
+def _warm_batch(sweep: Sweep, point: dict) -> str | None:
+    """Compile (or load) the batch's loop, if the sweep's points take it, on the worker this runs on, once,
+    before the others load it from numba's cache; why it could not, or None.
+
+    On a worker, not here: a compile cannot be stopped inside LLVM, and stopped between its passes it
+    leaves numba's state broken; a worker is closed with its cluster on Ctrl-C.
+    """
     try:
         batched = problem(parse_scene(sweep.base, sweep.source, point)) is not None
     except Exception:  # noqa: BLE001 - the point fails in its batch, with its reason
-        return
+        return None
     if batched:
         try:
             warm()
         except Exception as err:  # noqa: BLE001 - the points still run, each alone
-            logger.warning("the batch runner could not be compiled (%s: %s): every point runs alone",
-                           type(err).__name__, err)
+            return f"{type(err).__name__}: {err}"
+    return None
 
 
 def max_workers() -> int:
@@ -128,7 +133,7 @@ def _client(scheduler: str | None, workers: int):
             raise SweepError(msg) from err
     # dashboard on any free port: 8787 may belong to another cluster on this machine
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0", silence_logs=logging.WARNING)
+                           dashboard_address=":0", silence_logs=logging.ERROR)
     return Client(cluster), cluster
 
 
@@ -213,7 +218,8 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
 
         if todo:  # the cluster before any file: a scheduler that cannot be reached leaves the folder untouched
             stage(f"connecting to {scheduler}" if scheduler else f"starting {workers} workers")
-            client, cluster = _client(scheduler, workers)
+            with held_signals():  # Ctrl-C once the cluster is up, to close it: half started, dask cannot
+                client, cluster = _client(scheduler, workers)
             stack.callback(client.close)
             if cluster is not None:
                 stack.callback(cluster.close)
@@ -224,9 +230,11 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
         write_json(manifest_path, manifest)
         table = stack.enter_context(Table(csv_path, sweep.keys))
         if todo:
-            with compile_watch(on_first=lambda _: stage("compiling the batch runner (first run after an install or "
-                                                        "an edit only; a minute or two)")):
-                _warm_batch(sweep, todo[0])
+            stage("loading the batch runner (compiled on the first run after an install or an edit: a minute "
+                  "or two)")
+            why = client.submit(_warm_batch, sweep, todo[0], pure=False).result()
+            if why is not None:
+                logger.warning("the batch runner could not be compiled (%s): every point runs alone", why)
             n_workers = len(client.scheduler_info()["workers"]) or workers
             stage(f"{len(todo)} points on {n_workers} workers")
             compute_start = time.perf_counter()
