@@ -15,7 +15,9 @@ x_t . grad omega = Re(mu) omega_s + Im(mu) omega_theta. In this non-conservative
 collocation form the geometric conservation law holds trivially (a uniform field
 has no gradient, whatever the grid does); the tests check it on a moving grid.
 
-Time step (timestepping.py): variable-step BDF2 (implicit Euler first) on the
+Time step (timestepping.py): variable-step BDF2 (implicit Euler on the first two
+steps: the initial level, where the walls may start impulsively, enters no BDF
+formula or predictor after the first step) on the
 viscous term, the metric and the boundary conditions; the convective term
 N = -(u - x_t) . grad omega explicit, extrapolated linearly from the last two
 levels. One step solves, in one linear system (system.py), the new flow, the
@@ -39,7 +41,9 @@ solved on.
 
 Error control. The local error of the step is estimated from the difference
 between the BDF2 solution and the explicit quadratic predictor through the last
-three levels (timestepping.py), on omega (root-mean-square over the interior
+three levels (timestepping.py; linear through two, conservatively, when only two
+BDF2 levels exist; the first steps, implicit Euler and the first two BDF2 ones,
+keep the initial step uncontrolled), on omega (root-mean-square over the interior
 nodes: the wall values are algebraic, the multipliers that keep the no-slip
 conditions, and follow the BDF derivative of the interior field, so they jump
 between the implicit Euler start and BDF2 however short the step) and,
@@ -140,15 +144,18 @@ class FlowLevel:
     q : ndarray, shape (4,)
         Wall velocities :data:`VELOCITY_NAMES`.
     psi, omega : ndarray, shape (n_modes, n_r)
-        Fourier-Chebyshev coefficients (omega counterclockwise-positive, walls.py).
+        Fourier-Chebyshev coefficients (omega counterclockwise-positive, walls.py), in
+        the solver's length unit b: psi / b^2 and omega, both in 1/s.
     c_in : float
-        psi on the inner wall minus Im(conj(U) zeta) there.
+        psi / b^2 on the inner wall minus Im(conj(U) zeta)/b^2 there.
     loads : ndarray, shape (4,)
         :data:`LOAD_NAMES`, per unit length.
     convection : ndarray, shape (n_modes, n_r)
         -(u - x_t) . grad omega at this level.
     dt : float or None
         The step that led to this level.
+    order : int
+        1 if it came from an implicit Euler step, 2 from BDF2, 0 for the initial level.
     """
 
     t: float
@@ -160,6 +167,7 @@ class FlowLevel:
     loads: np.ndarray
     convection: np.ndarray
     dt: float | None = None
+    order: int = 0
 
 
 @dataclass
@@ -218,19 +226,28 @@ class UnsteadySolver:
         check_finite("g_eff (x)", g_eff.real)
         check_finite("g_eff (z)", g_eff.imag)
         self.g_eff = g_eff
+        # Internally lengths are in units of b (time in s): the stream function then has the
+        # size of the vorticity, and the LU's equilibration works on a matrix whose ranges
+        # come from the geometry alone (in SI units it failed at 1 - kappa = 1e-4).
+        self._unit = self.b
+        self._q_scale = np.array([1.0 / self.b, 1.0 / self.b, 1.0, 1.0])   # q internal = q * scale
+        self._load_scale = np.array([1.0, 1.0, self.b, self.b])            # loads SI = internal * scale
+        self._nu = self.nu / self.b**2
+        self._rho = self.rho * self.b**3
         self.resolution = resolution
         self.control = control or StepControl()
         self.grid: Grid | None = None
         self.levels: list[FlowLevel] = []
         self.counters = _Counters()
         self._factors: StepSystem | None = None
+        self._fresh = True
         self._speed = 0.0
 
     # ------------------------------------------------------------------ set-up
 
     def geometry(self, z_a: complex) -> AnnulusMap:
-        """The map at inner centre ``z_a``; refuses gaps the method does not resolve."""
-        geo = AnnulusMap(self.a, self.b, z_a)
+        """The map at inner centre ``z_a`` (m), in the solver's length unit b; refuses gaps it does not resolve."""
+        geo = AnnulusMap(self.a / self.b, 1.0, complex(z_a) / self.b)
         if geo.one_minus_kappa < MIN_ONE_MINUS_KAPPA_UNSTEADY:
             msg = (f"one_minus_kappa = 1 - kappa must be at least {MIN_ONE_MINUS_KAPPA_UNSTEADY:g} for the unsteady "
                    f"solver (the narrowest gap it resolves), reached {geo.one_minus_kappa:.3g} at z_a = {z_a}")
@@ -259,9 +276,11 @@ class UnsteadySolver:
         if psi.shape != shape or omega.shape != shape:
             msg = f"psi and omega must have shape {shape}"
             raise ValueError(msg)
-        conv = self.convection(geo, psi, omega, complex(q[0], q[1]))
-        loads = self._loads_of_level(geo, psi, omega, q)
+        qu = q * self._q_scale
+        conv = self.convection(geo, psi, omega, complex(qu[0], qu[1]))
+        loads = self._loads_of_level(geo, psi, omega, qu)
         self.levels = [FlowLevel(float(t), complex(z_a), q, psi, omega, float(c_in), loads, conv)]
+        self._fresh = True
         self._factors = None
         self._note_speed(q)
 
@@ -275,9 +294,9 @@ class UnsteadySolver:
         self._ensure_grid(geo)
         grid = self.grid
         zeta = geo.zeta(geo.w(grid.x, grid.theta))
-        psi = grid.to_spectral(np.asarray(stream(zeta), dtype=float))
+        psi = grid.to_spectral(np.asarray(stream(zeta * self.b), dtype=float)) / self.b**2
         from .operator import ImplicitOperator
-        omega = -ImplicitOperator(grid, geo, self.nu, 0.0).laplacian(psi)
+        omega = -ImplicitOperator(grid, geo, self._nu, 0.0).laplacian(psi)
         return psi, omega
 
     # ------------------------------------------------------------------ physics
@@ -299,14 +318,16 @@ class UnsteadySolver:
 
     def _loads_of_level(self, geo, psi, omega, q) -> np.ndarray:
         """Loads of a stored level without acceleration (used for the initial level)."""
-        sys_ = StepSystem(self.grid, geo, self.nu, self.rho, 0.0)
+        sys_ = StepSystem(self.grid, geo, self._nu, self._rho, 0.0)
         x = np.concatenate([psi, omega], axis=1).reshape(-1)
         s = np.array([0.0, *q])
-        lam0 = np.array([-sys_.added_mass * self.g_eff.real, -sys_.added_mass * self.g_eff.imag, 0.0, 0.0])
-        return sys_.loads(x, s, lam0)
+        g = self.g_eff / self.b
+        lam0 = np.array([-sys_.added_mass * g.real, -sys_.added_mass * g.imag, 0.0, 0.0])
+        return sys_.loads(x, s, lam0) * self._load_scale
 
     def _note_speed(self, q):
-        self._speed = max(self._speed, abs(complex(q[0], q[1])), abs(q[2]) * self.a, abs(q[3]) * self.b)
+        # the largest wall speed met, in units of b per second
+        self._speed = max(self._speed, max(abs(complex(q[0], q[1])), abs(q[2]) * self.a, abs(q[3]) * self.b) / self.b)
 
     # ------------------------------------------------------------------ stepping
 
@@ -322,7 +343,7 @@ class UnsteadySolver:
 
     def _system(self, geo: AnnulusMap, c0: float) -> tuple[StepSystem, StepSystem | None]:
         """The step's system and the factors to solve it with (None: factorise it)."""
-        system = StepSystem(self.grid, geo, self.nu, self.rho, c0)
+        system = StepSystem(self.grid, geo, self._nu, self._rho, c0)
         f = self._factors
         if self.control.reuse and f is not None and \
                 max(c0 / f.c0, f.c0 / c0) <= self.control.refactor_ratio:
@@ -331,7 +352,7 @@ class UnsteadySolver:
 
     def _solve(self, geo, b_: Bdf, rhs, wall, q_hist):
         system, factors = self._system(geo, b_.c0)
-        e, g, h, lam0 = system.borders(b_, wall, q_hist, self.g_eff)
+        e, g, h, lam0 = system.borders(b_, wall, q_hist, self.g_eff / self.b)
         sweeps = 0
         out = None
         if factors is not None:
@@ -382,22 +403,32 @@ class UnsteadySolver:
         if m_.shape != (4, 4) or c_.shape != (4, 4) or r_.shape != (4,):
             msg = "wall equations must be M (4 x 4), C (4 x 4) and r (4,)"
             raise ValueError(msg)
-        wall_ = (m_, c_, r_)
+        # in internal units: q = q_int / scale, loads = loads_int * load_scale
+        wall_ = (m_ / self._q_scale[None, :], c_ * self._load_scale[None, :], r_)
         w_n, w_b = extrapolation(dt, now.dt if before is not None else None)
         conv = w_n * now.convection + (w_b * before.convection if before is not None else 0.0)
         om_hist = b_.history(now.omega, before.omega if before is not None else 0.0)
-        q_hist = b_.history(now.q, before.q if before is not None else 0.0)
-        z_hist = b_.history(now.z_a, before.z_a if before is not None else 0.0)
+        q_hist = b_.history(now.q, before.q if before is not None else 0.0) * self._q_scale
+        z_hist = b_.history(now.z_a, before.z_a if before is not None else 0.0) / self.b
         rhs = flow_rhs(self.grid, conv - om_hist)
-        steps = tuple(level.dt for level in lv[:-1])[:2]  # (h', h'') of the levels we have
-        pw = predictor_weights(dt, steps)
-        q_pred = sum(w * level.q for w, level in zip(pw, lv))
+        # the predictor uses the leading BDF2 levels only: the wall vorticity (and through it
+        # the vorticity next to the wall) follows the derivative formula, and jumps where
+        # implicit Euler gives way to BDF2
+        smooth = 0
+        for level in lv:
+            if level.order != 2:
+                break
+            smooth += 1
+        steps = tuple(level.dt for level in lv[:smooth - 1])[:2]  # (h', h'') of the usable levels
+        pw = predictor_weights(dt, steps) if smooth else (1.0,)
+        controlled = smooth >= 2
+        q_pred = sum(w * level.q for w, level in zip(pw, lv)) * self._q_scale
         corrections = 0
         factorisations = 0
         sweeps_total = 0
         if z_new is not None:
-            z = complex(z_new)
-            geo = self.geometry(z)
+            z = complex(z_new) / self.b
+            geo = self.geometry(z * self.b)
             x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist)
             factorisations += nf
             sweeps_total += sw
@@ -406,7 +437,7 @@ class UnsteadySolver:
             z = (complex(q_pred[0], q_pred[1]) - z_hist) / b_.c0
             converged = False
             for corrections in range(1, ctl.max_corrections + 1):
-                geo = self.geometry(z)
+                geo = self.geometry(z * self.b)
                 x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist)
                 factorisations += nf
                 sweeps_total += sw
@@ -415,7 +446,7 @@ class UnsteadySolver:
                     converged = True
                     break
                 z = z_next
-                if abs(z) >= self.b - self.a:
+                if abs(z) >= 1.0 - self.a / self.b:
                     break
             self.counters.corrections += corrections
             if not converged:
@@ -429,10 +460,10 @@ class UnsteadySolver:
         # local error estimate
         e_const = error_constant(dt, steps)
         om_pred = sum(w * level.omega for w, level in zip(pw, lv))
-        self._note_speed(q_new)
+        self._note_speed(q_new / self._q_scale)
         atol = ctl.atol
         if atol is None:
-            atol = ctl.rtol * max(self._speed, 1e-300) / (self.b - self.a)
+            atol = ctl.rtol * max(self._speed, 1e-300) / (1.0 - self.a / self.b)
         # the wall values of omega are algebraic (the multipliers of no-slip, set by the
         # derivative of the interior field): the estimate is on the interior, as for a DAE
         inner = slice(1, self.grid.n_r - 1)
@@ -441,26 +472,29 @@ class UnsteadySolver:
         if control_motion is None:
             control_motion = z_new is None
         if control_motion:
-            z_pred = sum(w * level.z_a for w, level in zip(pw, lv))
+            z_pred = sum(w * level.z_a for w, level in zip(pw, lv)) / self.b
             scale_u = ctl.rtol * self._speed + 1e-300
             err_q = np.abs(q_new - q_pred) / (ctl.rtol * np.abs(q_new) +
-                                              scale_u * np.array([1.0, 1.0, 1.0 / self.a, 1.0 / self.b]))
+                                              scale_u * np.array([1.0, 1.0, self.b / self.a, 1.0]))
             err_z = abs(z - z_pred) / (ctl.rtol * geo.gap + 1e-300)
             err = max(err, e_const * float(err_q.max()), e_const * err_z)
-        if ctl.adaptive and len(lv) >= 2:
+        if ctl.adaptive and controlled:
             dt_next = next_step(dt, err, safety=ctl.safety, fac_min=ctl.fac_min, fac_max=ctl.fac_max)
             if err <= 1.0 and 1.0 / ctl.hold <= dt_next / dt <= ctl.hold:
                 dt_next = dt  # hold the step (and the factorisation) within the tolerance
         else:
             dt_next = dt
-        if ctl.adaptive and len(lv) >= 2 and err > 1.0:
+        if ctl.adaptive and controlled and err > 1.0:
             self.counters.rejected += 1
             return StepResult(False, dt, dt_next, err, corrections, factorisations, sweeps_total,
                               "local error above tolerance")
-        u_new = complex(q_new[0], q_new[1])
-        new = FlowLevel(t_new, z, q_new, psi, om, float(s[0]), loads,
-                        self.convection(geo, psi, om, u_new), dt)
-        self.levels = [new, *lv[:2]]
+        u_new = complex(q_new[0], q_new[1])  # internal units
+        new = FlowLevel(t_new, z * self.b, q_new / self._q_scale, psi, om, float(s[0]), loads * self._load_scale,
+                        self.convection(geo, psi, om, u_new), dt, 2 if before is not None else 1)
+        # the initial level is kept out of every later BDF formula and predictor: the
+        # walls may have started impulsively, and no polynomial through it is smooth
+        self.levels = [new] if self._fresh else [new, *lv[:2]]
+        self._fresh = False
         self.counters.steps += 1
         return StepResult(True, dt, dt_next, err, corrections, factorisations, sweeps_total)
 
@@ -483,14 +517,14 @@ class UnsteadySolver:
         geo = self.geometry(lv.z_a)
         n = grid.n_theta
         w = geo.w(grid.x, grid.theta)
-        zeta = geo.zeta(w)
+        zeta = geo.zeta(w) * self.b
         scale = 2.0 / geo.tau
         ps_s = grid.to_physical(scale * grid.d_x(lv.psi), n)
         ps_t = grid.to_physical(grid.d_theta(lv.psi), n)
         # u_x + i u_z = -i grad psi, grad psi = (psi_s + i psi_theta)/conj(zeta_sigma)
-        vel = -1j * (ps_s + 1j * ps_t) / np.conj(geo.dzeta_dsigma(w))
+        vel = -1j * (ps_s + 1j * ps_t) / np.conj(geo.dzeta_dsigma(w)) * self.b
         return {"x": zeta.real, "z": zeta.imag, "vorticity": -grid.to_physical(lv.omega, n),
-                "stream_function": grid.to_physical(lv.psi, n), "u_x": vel.real, "u_z": vel.imag}
+                "stream_function": grid.to_physical(lv.psi, n) * self.b**2, "u_x": vel.real, "u_z": vel.imag}
 
 
 def _rms(f: np.ndarray) -> float:
