@@ -131,3 +131,18 @@ def steady_drag(a: float, b: float, mu: float) -> float:
 def inviscid_added_mass(a: float, b: float, rho: float) -> float:
     """rho pi a^2 (b^2 + a^2)/(b^2 - a^2), per unit length."""
     return rho * math.pi * a * a * (b * b + a * a) / (b * b - a * a)
+
+
+def oscillating_spin_torque(a: float, b: float, nu: float, rho: float, w: float) -> complex:
+    """Clockwise torque on the inner wall per unit clockwise spin Omega_a = Re(e^{i w t}), outer wall held.
+
+    The clockwise azimuthal velocity Re(V(r) e^{i w t}) obeys i w V = nu (V'' + V'/r - V/r^2):
+    V = C I1(k r) + D K1(k r), k^2 = i w / nu, V(a) = a, V(b) = 0; the torque of the fluid on the inner
+    wall is 2 pi a^2 mu (V' - V/r) at r = a (the shear stress mu r (V/r)').
+    """
+    mu = rho * nu
+    k = np.sqrt(1j * w / nu)
+    mat = np.array([[special.iv(1, k * a), special.kv(1, k * a)], [special.iv(1, k * b), special.kv(1, k * b)]])
+    c, d = np.linalg.solve(mat, np.array([a, 0.0], dtype=complex))
+    dv = k * (c * special.ivp(1, k * a) + d * special.kvp(1, k * a))
+    return 2.0 * math.pi * a * a * mu * (dv - 1.0)
