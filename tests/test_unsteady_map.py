@@ -142,7 +142,7 @@ def test_resolution_refuses_too_few_points():
 def test_run_refuses_a_gap_below_the_reach_and_names_it():
     """A motion that closes the gap below the solver's reach is refused before it starts, naming 1 - kappa and when."""
     motion = PrescribedMotion(x_a=(0.0, DELTA * (1.0 - 1e-7), 5.0, 0.0))
-    with pytest.raises(ValueError, match=r"one_minus_kappa = 1 - kappa must stay at least .* reaches 1e-07 .* at t = 0.942"):
+    with pytest.raises(ValueError, match=r"one_minus_kappa = 1 - kappa must stay at least 0.0001 .* reaches 1e-07 .* at t = 0.942"):
         run_prescribed(A, B, 2e-4, 1000.0, motion, t_end=1.0)
     with pytest.raises(ValueError, match="t_end must be in"):
         run_prescribed(A, B, 2e-4, 1000.0, PrescribedMotion(), t_end=-1.0)

@@ -96,7 +96,7 @@ __all__ = ["AnnulusMap", "MIN_ONE_MINUS_KAPPA_UNSTEADY"]
 
 #: Smallest 1 - kappa at which the unsteady solver accepts a geometry (see
 #: :mod:`lubrication.unsteady.resolution` for the measurements behind it).
-MIN_ONE_MINUS_KAPPA_UNSTEADY = 1e-5
+MIN_ONE_MINUS_KAPPA_UNSTEADY = 1e-4
 
 
 @dataclass(frozen=True)

@@ -24,9 +24,12 @@ from .mapping import AnnulusMap
 
 __all__ = ["FOURIER_DECAY_MODES", "MIN_N_THETA", "Resolution", "default_resolution"]
 
-#: beta K at the default resolution: exp(-beta K) below about 1e-8 (measured: the
-#: steady Stokes loads then agree with the exact solution to better than 1e-6).
-FOURIER_DECAY_MODES = 20.0
+#: beta K at the default resolution, exp(-beta K) ~ 1e-6. Measured on the steady Stokes
+#: loads (tests/test_unsteady_stokes.py): at kappa = 0.99 (beta = 0.12) K = 63 gave 1e-4
+#: (T_b per W_a) and K = 127 1e-9; at 1 - kappa = 1e-4 (beta = 0.0119) K = 1023 gave
+#: f_chi and T_a per W_a to 1e-10 while K = 1683 (beta K = 20) gave 6e-4: the solve's
+#: rounding floor rises with the number of modes, so more is not better there.
+FOURIER_DECAY_MODES = 14.0
 #: Fewest theta points of the default resolution.
 MIN_N_THETA = 32
 
