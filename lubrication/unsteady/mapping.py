@@ -66,6 +66,40 @@ a trigonometric polynomial of degree 2 in theta, represented exactly by five
 Fourier coefficients (the implicit operator couples the Fourier index k only
 to k +- 1, k +- 2).
 
+The stream-function weight
+--------------------------
+The exact Stokes flows of rigid walls (Jeffery 1922) have a stream function psi
+whose product with the bipolar metric factor cosh(xi) - cos(eta) is a
+trigonometric polynomial of degree 1 in the bipolar angle eta. In the map's
+variables that factor is, up to a constant,
+
+    H = |1 + conj(p) w|^2 / |w| = H_0(s) + conj(p) e^{i theta} + p e^{-i theta},
+    H_0 = e^{-s} + |p|^2 e^{s},        H = 2 |p| (cosh(s - beta) + cos(theta - arg p)),
+
+positive on the closed annulus (|p| < 1 <= 1/|p|), and = e^{-s} at p = 0; it is the
+reciprocal of the line element: |d zeta/d sigma| = b (1 - |p|^2)/H, g = H^2/k with
+k = b^2 (1 - |p|^2)^2. psi itself is not low-degree: its coefficients fall only
+like (|p| rho)^|k| (those of 1/|1 + conj(p) w|^2), slowly near contact, where
+the wide part of the gap is squeezed into an angle ~ beta of the computational
+circle. The solver therefore works with Psi = H psi. Since H is of the form
+c (cosh(xi) + cos(eta)), |grad H|^2 = H Lap H and Lap H = H_0 - conj(p) e^{i theta}
+- p e^{-i theta} (H_0'' = H_0), so that
+
+    H^2 Lap_sigma(Psi / H) = H Lap Psi - 2 grad H . grad Psi + (Lap H) Psi,
+    Lap_zeta psi = (1/k) [H Lap Psi - 2 grad H . grad Psi + (Lap H) Psi],
+
+whose Fourier coefficients are (D = d/ds, H_0' = -e^{-s} + |p|^2 e^{s})
+
+    (k Lap_zeta psi)_k = H_0 (D^2 - k^2 + 1) Psi_k - 2 H_0' D Psi_k
+                         + conj(p) (D^2 - (k - 2)^2) Psi_{k-1} + p (D^2 - (k + 2)^2) Psi_{k+1}:
+
+a tridiagonal coupling in k. The velocity needs no division either:
+g psi_theta = (H Psi_theta - H_theta Psi)/k and g psi_s = (H Psi_s - H_s Psi)/k.
+The vorticity of those Stokes flows, 4 Im phi'(zeta) in Goursat's form, has poles
+only at the limit points, images of w = 0 and w = infinity: a Laurent polynomial
+of degree 2 in w. So a few Fourier modes of (Psi, omega) hold the exact steady
+Stokes flow at every eccentricity, while psi needs ~ 1/beta of them.
+
 Mesh velocity
 -------------
 A grid point of fixed (x, theta) moves because p and tau change with z_A. At fixed
@@ -225,6 +259,23 @@ class AnnulusMap:
         g[1] = np.conj(g[3])
         g[0] = np.conj(g[4])
         return g
+
+    def stream_weight_coefficients(self, x) -> tuple[np.ndarray, np.ndarray, complex]:
+        """H_0(x), dH_0/ds(x) and H_1 = conj(p): H = H_0 + H_1 e^{i theta} + conj(H_1) e^{-i theta} (module docstring)."""
+        rho = np.exp(self.s(x))
+        p2 = abs(self.p) ** 2
+        return 1.0 / rho + p2 * rho, -1.0 / rho + p2 * rho, complex(np.conj(self.p))
+
+    def stream_weight_fields(self, x, theta) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """H, dH/ds and dH/dtheta on the grid (x along the first axis, theta along the second)."""
+        h0, dh0, h1 = self.stream_weight_coefficients(x)
+        e = h1 * np.exp(1j * np.asarray(theta))
+        return h0[:, None] + 2.0 * e.real[None, :], np.repeat(dh0[:, None], e.size, axis=1), \
+            -2.0 * e.imag[None, :].repeat(h0.size, axis=0)
+
+    def stream_weight(self, w):
+        """H = |1 + conj(p) w|^2 / |w| evaluated directly (a check on :meth:`stream_weight_coefficients`)."""
+        return np.abs(1.0 + np.conj(self.p) * w) ** 2 / np.abs(w)
 
     def metric(self, w):
         """g = 1/|d zeta/d sigma|^2 evaluated directly (a check on :meth:`metric_coefficients`)."""

@@ -144,8 +144,10 @@ class FlowLevel:
     q : ndarray, shape (4,)
         Wall velocities :data:`VELOCITY_NAMES`.
     psi, omega : ndarray, shape (n_modes, n_r)
-        Fourier-Chebyshev coefficients (omega counterclockwise-positive, walls.py), in
-        the solver's length unit b: psi / b^2 and omega, both in 1/s.
+        Fourier-Chebyshev coefficients of Psi = H psi (the stream function times the
+        weight H of :mod:`lubrication.unsteady.mapping`) and of omega
+        (counterclockwise-positive, walls.py), in the solver's length unit b:
+        H psi / b^2 and omega, both in 1/s. :meth:`UnsteadySolver.fields` gives psi.
     c_in : float
         psi / b^2 on the inner wall minus Im(conj(U) zeta)/b^2 there.
     loads : ndarray, shape (4,)
@@ -289,15 +291,18 @@ class UnsteadySolver:
         self.start(z_a, q, t=t)
 
     def fields_from_stream_function(self, z_a: complex, stream) -> tuple[np.ndarray, np.ndarray]:
-        """Coefficients (psi, omega = -Lap psi) of a stream function given as ``stream(zeta)`` (m^2/s)."""
+        """Coefficients (Psi = H psi, omega = -Lap psi) of a stream function given as ``stream(zeta)`` (m^2/s).
+
+        The pair that :meth:`start` takes (:class:`FlowLevel`)."""
         geo = self.geometry(complex(z_a))
         self._ensure_grid(geo)
         grid = self.grid
         zeta = geo.zeta(geo.w(grid.x, grid.theta))
-        psi = grid.to_spectral(np.asarray(stream(zeta * self.b), dtype=float)) / self.b**2
+        weight = geo.stream_weight_fields(grid.x, grid.theta)[0]
+        big_psi = grid.to_spectral(weight * np.asarray(stream(zeta * self.b), dtype=float)) / self.b**2
         from .operator import ImplicitOperator
-        omega = -ImplicitOperator(grid, geo, self._nu, 0.0).laplacian(psi)
-        return psi, omega
+        omega = -ImplicitOperator(grid, geo, self._nu, 0.0).stream_laplacian(big_psi)
+        return big_psi, omega
 
     # ------------------------------------------------------------------ physics
 
@@ -305,15 +310,18 @@ class UnsteadySolver:
         """Coefficients of N = -(u - x_t) . grad omega (padded products, truncated)."""
         grid = self.grid
         scale = 2.0 / geo.tau
+        # g psi_theta = (H Psi_theta - H_theta Psi)/k, g psi_s = (H Psi_s - H_s Psi)/k (mapping.py)
+        big = grid.to_physical(psi)
         ps_t = grid.to_physical(grid.d_theta(psi))
         ps_s = grid.to_physical(scale * grid.d_x(psi))
         om_t = grid.to_physical(grid.d_theta(omega))
         om_s = grid.to_physical(scale * grid.d_x(omega))
-        gm = geo.metric_coefficients(grid.x)
-        phase = np.exp(1j * np.outer(np.arange(-2, 3), grid.theta_pad))
-        g = (gm.T @ phase).real
+        h, h_s, h_t = geo.stream_weight_fields(grid.x, grid.theta_pad)
+        k_metric = (geo.b * geo.one_minus_p2) ** 2
+        g_psi_t = (h * ps_t - h_t * big) / k_metric
+        g_psi_s = (h * ps_s - h_s * big) / k_metric
         mesh = geo.mesh_velocity(u, grid.x, grid.theta_pad)
-        n = -g * (ps_t * om_s - ps_s * om_t) + mesh.real * om_s + mesh.imag * om_t
+        n = -(g_psi_t * om_s - g_psi_s * om_t) + mesh.real * om_s + mesh.imag * om_t
         return grid.to_spectral(n)
 
     def _loads_of_level(self, geo, psi, omega, q) -> np.ndarray:
@@ -519,12 +527,14 @@ class UnsteadySolver:
         w = geo.w(grid.x, grid.theta)
         zeta = geo.zeta(w) * self.b
         scale = 2.0 / geo.tau
-        ps_s = grid.to_physical(scale * grid.d_x(lv.psi), n)
-        ps_t = grid.to_physical(grid.d_theta(lv.psi), n)
+        h, h_s, h_t = geo.stream_weight_fields(grid.x, grid.theta)
+        psi = grid.to_physical(lv.psi, n) / h
+        ps_s = (grid.to_physical(scale * grid.d_x(lv.psi), n) - h_s * psi) / h
+        ps_t = (grid.to_physical(grid.d_theta(lv.psi), n) - h_t * psi) / h
         # u_x + i u_z = -i grad psi, grad psi = (psi_s + i psi_theta)/conj(zeta_sigma)
         vel = -1j * (ps_s + 1j * ps_t) / np.conj(geo.dzeta_dsigma(w)) * self.b
         return {"x": zeta.real, "z": zeta.imag, "vorticity": -grid.to_physical(lv.omega, n),
-                "stream_function": grid.to_physical(lv.psi, n) * self.b**2, "u_x": vel.real, "u_z": vel.imag}
+                "stream_function": psi * self.b**2, "u_x": vel.real, "u_z": vel.imag}
 
 
 def _rms(f: np.ndarray) -> float:

@@ -1,6 +1,6 @@
 r"""The monolithic linear system of one time step: flow, inner-wall constant and wall velocities.
 
-Unknowns: the flow x (psi and omega coefficients, :mod:`lubrication.unsteady.operator`)
+Unknowns: the flow x (coefficients of Psi = H psi and omega, :mod:`lubrication.unsteady.operator`)
 and s = (C_in, U_x, U_z, Omega_a, Omega_b), the inner wall's stream-function constant
 and the new wall velocities q. Equations:
 
@@ -87,7 +87,8 @@ class StepSystem:
         w = self.walls
         # wall data per unit s = (C_in, U_x, U_z, Omega_a, Omega_b), in row layout
         d = np.zeros((mm, 2, n, 5), dtype=complex)
-        d[kk, 0, n - 1, 0] = 1.0
+        d[:, 0, n - 1, 0] = w.psi_in[2]
+        d[:, 1, n - 1, 0] = w.dpsi_in[3]
         d[:, 0, n - 1, 1] = w.psi_in[0]
         d[:, 0, n - 1, 2] = w.psi_in[1]
         d[:, 1, n - 1, 1] = w.dpsi_in[0]

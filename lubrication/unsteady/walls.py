@@ -22,9 +22,20 @@ there. So, on |w| = r0 (x = -1, s = -tau),
 (zeta_sigma = d zeta/d sigma is along the normal into the fluid, zeta - z_A = a n), with
 the unknown constant C_in (the constant Omega_a a^2/2 is absorbed in it). On |w| = 1,
 psi = Omega_b (|zeta|^2 - b^2)/2 gives psi = 0 and d psi/ds = Omega_b b |zeta_sigma|.
-The Fourier coefficients of these data are exact: zeta, zeta_sigma and |zeta_sigma| have
-closed-form series on the walls (:meth:`AnnulusMap.wall_series`), and
-Im(conj(U) f) has the coefficients (conj(U) f_k - U conj(f_{-k}))/(2 i).
+The solver's unknown is Psi = H psi (H = |1 + conj(p) w|^2/|w| > 0, mapping.py), so
+the conditions are imposed on Psi and D Psi = H_s psi + H psi_s. With
+H zeta = b [e^{i theta} + p (rho + 1/rho) + p^2 e^{-i theta}] and H |zeta_sigma| = b (1 - |p|^2),
+both exact, on |w| = r0 (rho + 1/rho = 2 cosh(tau), rho - 1/rho = -2 sinh(tau)):
+
+    Psi   = Im(conj(U) H zeta) + C_in H,
+    D Psi = Im(conj(U) D(H zeta)) + C_in H_0' + Omega_a a b (1 - |p|^2),
+            D(H zeta) = b p (rho - 1/rho),
+
+and on |w| = 1, Psi = 0 and D Psi = Omega_b b^2 (1 - |p|^2): trigonometric
+polynomials of degree 1 (the exact Stokes flows' Psi is of the same degree).
+Im(conj(U) f) has the coefficients (conj(U) f_k - U conj(f_{-k}))/(2 i). The loads
+below use the closed-form series of zeta, zeta_sigma and |zeta_sigma| on the walls
+(:meth:`AnnulusMap.wall_series`).
 
 The circulation condition
 -------------------------
@@ -105,12 +116,12 @@ class WallData:
     Attributes
     ----------
     psi_in : ndarray, shape (3, n_modes)
-        Coefficients of psi on the inner wall per unit U_x, U_z, and of the
-        constant C_in (rows in that order).
-    dpsi_in : ndarray, shape (3, n_modes)
-        Coefficients of d psi/ds on the inner wall per unit U_x, U_z, Omega_a.
+        Coefficients of Psi = H psi on the inner wall per unit U_x, U_z and C_in
+        (rows in that order).
+    dpsi_in : ndarray, shape (4, n_modes)
+        Coefficients of D Psi on the inner wall per unit U_x, U_z, Omega_a and C_in.
     dpsi_out : ndarray, shape (n_modes,)
-        Coefficients of d psi/ds on the outer wall per unit Omega_b.
+        Coefficients of D Psi on the outer wall per unit Omega_b.
     force_omega, force_omega_s : ndarray, shape (2, n_modes)
         F_x and F_z (per unit length) = force_omega . omega_k(x = -1)
         + force_omega_s . omega_s,k(x = -1), the viscous and vorticity-flux part.
@@ -120,20 +131,32 @@ class WallData:
 
     def __init__(self, grid: Grid, geometry: AnnulusMap, mu: float):
         kk = grid.K
-        series = geometry.wall_series(grid.n_modes)
-        zeta_in = series["zeta_in"].copy()
-        zeta_in[kk] += geometry.z_a
+        mm = grid.n_modes
+        series = geometry.wall_series(mm)
         dz_in = series["dzeta_in"]
-        a, b = geometry.a, geometry.b
-        self.psi_in = np.zeros((3, grid.n_modes), dtype=complex)
-        self.psi_in[0] = _im_conj_u(zeta_in, 1.0)
-        self.psi_in[1] = _im_conj_u(zeta_in, 1j)
-        self.psi_in[2, kk] = 1.0
-        self.dpsi_in = np.zeros((3, grid.n_modes), dtype=complex)
-        self.dpsi_in[0] = _im_conj_u(dz_in, 1.0)
-        self.dpsi_in[1] = _im_conj_u(dz_in, 1j)
-        self.dpsi_in[2] = a * series["abs_dzeta_in"]
-        self.dpsi_out = b * series["abs_dzeta_out"]
+        a, b, p = geometry.a, geometry.b, geometry.p
+        omp2 = geometry.one_minus_p2
+        h0, dh0, h1 = geometry.stream_weight_coefficients(np.array([-1.0]))
+        # H zeta and D(H zeta) on |w| = r0
+        hz = np.zeros(mm, dtype=complex)
+        hz[kk + 1] = b
+        hz[kk] = 2.0 * b * p * math.cosh(geometry.tau)
+        hz[kk - 1] = b * p * p
+        dhz = np.zeros(mm, dtype=complex)
+        dhz[kk] = -2.0 * b * p * geometry._sinh_tau
+        self.psi_in = np.zeros((3, mm), dtype=complex)
+        self.psi_in[0] = _im_conj_u(hz, 1.0)
+        self.psi_in[1] = _im_conj_u(hz, 1j)
+        self.psi_in[2, kk] = h0[0]
+        self.psi_in[2, kk + 1] = h1
+        self.psi_in[2, kk - 1] = np.conj(h1)
+        self.dpsi_in = np.zeros((4, mm), dtype=complex)
+        self.dpsi_in[0] = _im_conj_u(dhz, 1.0)
+        self.dpsi_in[1] = _im_conj_u(dhz, 1j)
+        self.dpsi_in[2, kk] = a * b * omp2
+        self.dpsi_in[3, kk] = dh0[0]
+        self.dpsi_out = np.zeros(mm, dtype=complex)
+        self.dpsi_out[kk] = b * b * omp2
         two_pi = 2.0 * math.pi
         # complex force F = sum c_k omega_k + sum d_k omega_s,k, then its real and imaginary parts
         c = 1j * mu * two_pi * dz_in[::-1]
