@@ -57,15 +57,20 @@ def test_couette_spin_up_is_second_order_in_time():
     assert errors[-1] < 5e-5
 
 
-def test_adaptive_couette_spin_up_meets_its_tolerance():
+@pytest.mark.parametrize(("omega_a", "omega_b"), [(0.0, OMEGA_B), (OMEGA_B, 0.0)])
+def test_adaptive_couette_spin_up_meets_its_tolerance(omega_a, omega_b):
     """rtol = 1e-5 of local error per step (on the interior vorticity): the torques from 0.1 to 2 viscous
     times within 30 rtol of the limit torque of the series. Measured: T_a 15 rtol, T_b 26 rtol (the global
-    error of the walls' vorticity, which the estimate leaves out as algebraic, and of the uncontrolled start)."""
+    error of the walls' vorticity, which the estimate leaves out as algebraic, and of the uncontrolled start).
+
+    The inner wall started impulsively checks the first step's circulation condition: the fluid's
+    acceleration at the wall is measured from the fluid's velocity there (at rest), not from the
+    wall's (measured 9e-5 and 1.5e-4 of the limit; with the wall's: 0.8 and 1.35)."""
     rtol = 1e-5
-    run = run_prescribed(A, B, NU, RHO, PrescribedMotion(omega_b=OMEGA_B), 2.0 * T_VISC, resolution=Resolution(8, 24),
-                         control=StepControl(rtol=rtol))
+    run = run_prescribed(A, B, NU, RHO, PrescribedMotion(omega_a=omega_a, omega_b=omega_b), 2.0 * T_VISC,
+                         resolution=Resolution(8, 24), control=StepControl(rtol=rtol))
     keep = run.t >= 0.1 * T_VISC
-    t_a, t_b = couette_spinup_torques(A, B, NU, RHO, OMEGA_B, run.t[keep])
+    t_a, t_b = couette_spinup_torques(A, B, NU, RHO, omega_b, run.t[keep], omega_a=omega_a)
     err_a = np.abs(run.T_a[keep] - t_a) / T_LIMIT
     err_b = np.abs(run.T_b[keep] - t_b) / T_LIMIT
     assert err_a.max() < 30 * rtol and err_b.max() < 30 * rtol

@@ -86,3 +86,19 @@ def test_fluid_at_rest_feels_only_the_body_force():
     expected = -RHO * math.pi * A * A * g_eff
     assert abs(complex(st.loads[0], st.loads[1]) - expected) < 1e-14 * abs(expected)
     assert np.max(np.abs(st.omega)) == 0.0 and st.loads[2] == 0.0 and st.loads[3] == 0.0
+
+
+@pytest.mark.parametrize("kappa", [0.0, 0.6])
+def test_fluid_wall_velocity_of_a_rigid_field_is_the_walls(kappa):
+    """The fluid moving rigidly with the inner wall, psi = Im(conj(U) zeta) + Omega_a |zeta - z_A|^2/2,
+    stands for the wall velocities (U, Omega_a) at its inner wall; a fluid at rest for none."""
+    z0 = kappa * DELTA * cmath.exp(-0.8j)
+    u, omega_a = complex(0.02, -0.03), 1.7
+    solver = UnsteadySolver(A, B, NU, RHO, Resolution(64, 16))
+    psi, _ = solver.fields_from_stream_function(
+        z0, lambda z: (np.conj(u) * z).imag + omega_a * np.abs(z - z0) ** 2 / 2.0)
+    geo = solver.geometry(z0)
+    got = solver.fluid_wall_velocity(geo, psi)
+    assert abs(complex(got[0], got[1]) - u) < 1e-12 * abs(u)
+    assert abs(got[2] - omega_a) < 1e-12 * omega_a
+    assert solver.fluid_wall_velocity(geo, np.zeros_like(psi)) == (0.0, 0.0, 0.0)

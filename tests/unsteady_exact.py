@@ -67,11 +67,16 @@ def couette_eigenvalues(a: float, b: float, n: int) -> np.ndarray:
     return np.array(roots)
 
 
-def couette_spinup_torques(a: float, b: float, nu: float, rho: float, omega_b: float, t, n_terms: int = 80):
-    """Clockwise torques (T_a on the inner wall about its axis, T_b on the outer) per unit length at times t."""
+def couette_spinup_torques(a: float, b: float, nu: float, rho: float, omega_b: float, t, n_terms: int = 80,
+                           omega_a: float = 0.0):
+    """Clockwise torques (T_a on the inner wall about its axis, T_b on the outer) per unit length at times t.
+
+    Both walls may start: v(a) = omega_a a, v(b) = omega_b b for t > 0, and the steady state has
+    A = (omega_b b^2 - omega_a a^2)/(b^2 - a^2), B = (omega_a - omega_b) a^2 b^2/(b^2 - a^2); the
+    transient is expanded as above (v - v_s vanishes on both walls)."""
     mu = rho * nu
-    big_a = omega_b * b * b / (b * b - a * a)
-    big_b = -omega_b * a * a * b * b / (b * b - a * a)
+    big_a = (omega_b * b * b - omega_a * a * a) / (b * b - a * a)
+    big_b = (omega_a - omega_b) * a * a * b * b / (b * b - a * a)
     lam = couette_eigenvalues(a, b, n_terms)
     # Gauss-Legendre on [a, b]: 400 nodes integrate the 80th eigenfunction's products to rounding
     xg, wg = np.polynomial.legendre.leggauss(400)
@@ -146,3 +151,97 @@ def oscillating_spin_torque(a: float, b: float, nu: float, rho: float, w: float)
     c, d = np.linalg.solve(mat, np.array([a, 0.0], dtype=complex))
     dv = k * (c * special.ivp(1, k * a) + d * special.kvp(1, k * a))
     return 2.0 * math.pi * a * a * mu * (dv - 1.0)
+
+
+def _scaled_bessel(k: complex, r: float, kind: str, ref: float):
+    """Z1(k r) and its first two r-derivatives, divided by Z1(k ref): Z1 = I1 (ref = b) or K1 (ref = a).
+
+    The exponentially scaled ive, kve keep the ratio finite for any |k| (Re k >= 0): the I1 ratio
+    is ~ exp(Re(k) (r - b)), the K1 ratio ~ exp(-k (r - a)). Derivatives from I1' = I0 - I1/z,
+    K1' = -K0 - K1/z and Bessel's equation Z1'' = (1 + 1/z^2) Z1 - Z1'/z."""
+    z, z0 = k * r, k * ref
+    if kind == "I":
+        factor = np.exp(k.real * (r - ref)) / special.ive(1, z0)
+        v0, v1 = special.ive(0, z) * factor, special.ive(1, z) * factor
+        d1 = v0 - v1 / z
+    else:
+        factor = np.exp(-k * (r - ref)) / special.kve(1, z0)
+        v0, v1 = special.kve(0, z) * factor, special.kve(1, z) * factor
+        d1 = -v0 - v1 / z
+    d2 = (1.0 + 1.0 / z**2) * v1 - d1 / z
+    return v1, k * d1, k * k * d2
+
+
+def impedance(a: float, b: float, nu: float, rho: float, s: complex) -> complex:
+    """Laplace-domain force per unit velocity on the inner cylinder, concentric: F(s) = Z(s) U(s).
+
+    The oscillating-cylinder solution above with i w -> s (k^2 = s/nu, Re k >= 0), written with
+    exponentially scaled Bessel functions so that it holds for every s of an inversion contour."""
+    mu = rho * nu
+    k = np.sqrt(complex(s) / nu)
+
+    def basis(r):
+        i1 = _scaled_bessel(k, r, "I", b)
+        k1 = _scaled_bessel(k, r, "K", a)
+        f = np.array([r, 1.0 / r, -i1[0] / k**2, -k1[0] / k**2])
+        df = np.array([1.0, -1.0 / r**2, -i1[1] / k**2, -k1[1] / k**2])
+        d2f = np.array([0.0, 2.0 / r**3, -i1[2] / k**2, -k1[2] / k**2])
+        dw = np.array([0.0, 0.0, i1[1], k1[1]])
+        return f, df, d2f, dw
+
+    fa, dfa, d2fa, dwa = basis(a)
+    fb, dfb, _, _ = basis(b)
+    coef = np.linalg.solve(np.array([fa, dfa, fb, dfb], dtype=complex), np.array([a, 1.0, 0.0, 0.0], dtype=complex))
+    f_a, df_a, d2f_a, dw_a = fa @ coef, dfa @ coef, d2fa @ coef, dwa @ coef
+    p = -a * (rho * s * df_a + mu * dw_a)
+    return math.pi * a * (-p + 2.0 * mu * (df_a / a - f_a / a**2) + mu * (d2f_a - df_a / a + f_a / a**2))
+
+
+def talbot(transform, t: float, m: int = 32) -> float:
+    """Inverse Laplace transform of a real function at t > 0 by the fixed Talbot contour.
+
+    f(t) = (r/M) [exp(r t) F(r)/2 + sum_{k=1}^{M-1} Re(exp(t s_k) F(s_k) (1 + i sigma_k))],
+    s_k = r th (cot th + i), sigma_k = th + (th cot th - 1) cot th, th = k pi/M, r = 2M/(5t)
+    (Abate and Valko, Int. J. Numer. Meth. Eng. 60, 2004). The terms reach exp(2M/5) ~ 4e5 at
+    M = 32, so about 1e-10 of f is left to rounding in double precision.
+    """
+    r = 2.0 * m / (5.0 * t)
+    total = 0.5 * math.exp(r * t) * transform(complex(r)).real
+    for k in range(1, m):
+        th = k * math.pi / m
+        cot = math.cos(th) / math.sin(th)
+        s = r * th * complex(cot, 1.0)
+        sigma = th + (th * cot - 1.0) * cot
+        total += (np.exp(t * s) * transform(s) * complex(1.0, sigma)).real
+    return r / m * total
+
+
+def free_cylinder_velocity(a: float, b: float, nu: float, rho: float, m_a: float, v0: float, t):
+    r"""Velocity of a free inner cylinder set moving at v0 in a fluid at rest, concentric, outer wall held.
+
+    Per unit length, small amplitude (linear: the geometry frozen at the concentric position,
+    no convection), no other force. At t = 0 the body moves at v0 and the fluid rests (the state
+    just after an impulse m_a v0 on the body that the fluid has not yet felt). Newton's law
+    m_a U' = F with F(s) = Z(s) U(s) (:func:`impedance`) gives, Laplace-transformed,
+
+        m_a (s U - v0) = Z(s) U,       U(s) = m_a v0 / (m_a s - Z(s)).
+
+    Limits (checked in the tests): as s -> infinity, Z(s) -> -m_added s, the inviscid added mass
+    m_added = rho pi a^2 (b^2 + a^2)/(b^2 - a^2) (:func:`inviscid_added_mass`), so
+    U(0+) = v0 m_a/(m_a + m_added): the pressure impulse that sets the fluid moving takes that
+    share of the body's momentum at once. As s -> 0, Z(0) = -R, the steady drag
+    (:func:`steady_drag`), so the body comes to rest after the displacement
+    X(infinity) = lim s X(s) = U(0) = m_a v0 / R.
+    """
+    def transform(s):
+        return m_a * v0 / (m_a * s - impedance(a, b, nu, rho, s))
+
+    return np.array([talbot(transform, float(ti)) for ti in np.atleast_1d(t)])
+
+
+def free_cylinder_displacement(a: float, b: float, nu: float, rho: float, m_a: float, v0: float, t):
+    """Displacement X(t) of :func:`free_cylinder_velocity`: the transform U(s)/s."""
+    def transform(s):
+        return m_a * v0 / ((m_a * s - impedance(a, b, nu, rho, s)) * s)
+
+    return np.array([talbot(transform, float(ti)) for ti in np.atleast_1d(t)])

@@ -185,16 +185,18 @@ class ImplicitOperator:
         row_scale, col_scale = _equilibrate(blocks, self.initial_column_scale())
         kl = ku = 3 * s - 1
         nn = mm * s
-        ab = np.zeros((2 * kl + ku + 1, nn), dtype=complex, order="F")
-        r = np.arange(s)
-        kb = np.arange(mm)
+        ldab = 2 * kl + ku + 1
+        ab = np.zeros((ldab, nn), dtype=complex, order="F")
+        # LAPACK's band storage puts A[i, j] at ab[kl + ku + i - j, j], i.e. at kl + ku + i + j (ldab - 1)
+        # of the column-major buffer: block (k, k + d) is a strided view of it
+        flat = ab.T.reshape(-1)
+        item = flat.itemsize
         for d in range(-2, 3):
-            valid = (kb + d >= 0) & (kb + d < mm)
-            kv = kb[valid]
-            rows = kl + ku - d * s + r[:, None] - r[None, :]          # (s, s): r - c
-            cols = (kv[:, None, None] + d) * s + r[None, None, :]     # (k, 1, s)
-            ab[np.broadcast_to(rows[None], (kv.size, s, s)), np.broadcast_to(cols, (kv.size, s, s))] = \
-                blocks[kv, d + 2]
+            lo, hi = max(0, -d), min(mm, mm - d)
+            start = kl + ku + lo * s + (lo + d) * s * (ldab - 1)
+            view = np.lib.stride_tricks.as_strided(flat[start:], shape=(hi - lo, s, s),
+                                                   strides=(s * ldab * item, item, (ldab - 1) * item))
+            view[...] = blocks[lo:hi, d + 2]
         return BandedLU(ab, kl, ku, row_scale, col_scale)
 
     def initial_column_scale(self) -> np.ndarray:
@@ -243,7 +245,8 @@ def _scale_columns(blocks: np.ndarray, col: np.ndarray) -> None:
         blocks[lo:hi, d + 2] *= col[lo + d:hi + d, None, :]
 
 
-def _equilibrate(blocks: np.ndarray, col0: np.ndarray | None = None, sweeps: int = 8) -> tuple[np.ndarray, np.ndarray]:
+def _equilibrate(blocks: np.ndarray, col0: np.ndarray | None = None,
+                 sweeps: int = 8) -> tuple[np.ndarray, np.ndarray]:
     """Scale the blocks in place to R A C with every row and column maximum near 1 (Ruiz's iteration).
 
     Rows and columns are scaled alternately by the inverse square roots of their
@@ -255,16 +258,18 @@ def _equilibrate(blocks: np.ndarray, col0: np.ndarray | None = None, sweeps: int
     mm, _, s, _ = blocks.shape
     row = np.ones((mm, s))
     col = np.ones((mm, s)) if col0 is None else np.array(col0, dtype=float)
-    if col0 is not None:
-        _scale_columns(blocks, col)
+    # the sweeps work on the moduli (|R A C| = R |A| C); the complex blocks are scaled once
+    absb = np.abs(blocks)
+    _scale_columns(absb, col)
     for _ in range(sweeps):
-        absb = np.abs(blocks)
         r = 1.0 / np.sqrt(absb.max(axis=(1, 3)))
-        blocks *= r[:, None, :, None]
+        absb *= r[:, None, :, None]
         row *= r
-        c = 1.0 / np.sqrt(_column_max(np.abs(blocks)))
-        _scale_columns(blocks, c)
+        c = 1.0 / np.sqrt(_column_max(absb))
+        _scale_columns(absb, c)
         col *= c
+    blocks *= row[:, None, :, None]
+    _scale_columns(blocks, col)
     return row.reshape(-1), col.reshape(-1)
 
 

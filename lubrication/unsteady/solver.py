@@ -158,6 +158,13 @@ class FlowLevel:
         The step that led to this level.
     order : int
         1 if it came from an implicit Euler step, 2 from BDF2, 0 for the initial level.
+    fluid_q : ndarray, shape (4,), or None
+        The wall velocities as the fluid along the inner wall has them (None: ``q``, as at
+        every stepped level, where no-slip holds). The initial level may break no-slip
+        (walls set moving in a fluid at rest): the fluid's acceleration at the inner wall
+        in the first step, which the wall pressure and the circulation condition need, is
+        then measured from the fluid's velocity there, not from the wall's
+        (:meth:`UnsteadySolver.fluid_wall_velocity`).
     """
 
     t: float
@@ -170,6 +177,11 @@ class FlowLevel:
     convection: np.ndarray
     dt: float | None = None
     order: int = 0
+    fluid_q: np.ndarray | None = None
+
+    @property
+    def q_seen_by_fluid(self) -> np.ndarray:
+        return self.q if self.fluid_q is None else self.fluid_q
 
 
 @dataclass
@@ -281,7 +293,8 @@ class UnsteadySolver:
         qu = q * self._q_scale
         conv = self.convection(geo, psi, omega, complex(qu[0], qu[1]))
         loads = self._loads_of_level(geo, psi, omega, qu)
-        self.levels = [FlowLevel(float(t), complex(z_a), q, psi, omega, float(c_in), loads, conv)]
+        fluid_q = np.array([*self.fluid_wall_velocity(geo, psi), q[3]])
+        self.levels = [FlowLevel(float(t), complex(z_a), q, psi, omega, float(c_in), loads, conv, fluid_q=fluid_q)]
         self._fresh = True
         self._factors = None
         self._note_speed(q)
@@ -305,6 +318,35 @@ class UnsteadySolver:
         return big_psi, omega
 
     # ------------------------------------------------------------------ physics
+
+    def fluid_wall_velocity(self, geo: AnnulusMap, psi: np.ndarray) -> tuple[float, float, float]:
+        """(U_x, U_z, Omega_a) of the rigid motion that the fluid's velocity along the inner wall stands for.
+
+        With the tangential velocity u . t = -d psi/dn (t counterclockwise, n into the
+        fluid; u . t ds = -psi_s d theta), a rigid motion U + Omega_a has
+        oint (zeta - z_A)(u . t) ds = -i pi a^2 U and oint u . t ds = -2 pi a^2 Omega_a
+        (clockwise Omega_a), so for any field
+
+            U = -(i/(pi a^2)) int (zeta - z_A) psi_s d theta,   Omega_a = (1/(2 pi a^2)) int psi_s d theta:
+
+        exactly the two moments of the wall velocity that the wall pressure's force
+        (walls.py) and the circulation condition involve. Zero for a fluid at rest;
+        the walls' own (U, Omega_a) where the fluid meets no-slip. ``psi`` holds the
+        coefficients of Psi = H psi in the solver's units; the result is in SI.
+        """
+        grid = self.grid
+        x = grid.x[-1:]
+        h, h_s, _ = geo.stream_weight_fields(x, grid.theta_pad)
+        scale = 2.0 / geo.tau
+        big = grid.to_physical(psi[:, -1:])
+        big_s = grid.to_physical(scale * (psi @ grid.d1[-1])[:, None])
+        psi_s = ((big_s - h_s * big / h) / h)[0]
+        zeta = geo.zeta(geo.w(x, grid.theta_pad))[0] - geo.z_a
+        mean = 2.0 * math.pi / grid.n_pad
+        a = geo.a
+        u = -1j / (math.pi * a * a) * np.sum(zeta * psi_s) * mean
+        omega_a = np.sum(psi_s) * mean / (2.0 * math.pi * a * a)
+        return u.real * self.b, u.imag * self.b, float(omega_a)
 
     def convection(self, geo: AnnulusMap, psi: np.ndarray, omega: np.ndarray, u: complex) -> np.ndarray:
         """Coefficients of N = -(u - x_t) . grad omega (padded products, truncated)."""
@@ -416,7 +458,9 @@ class UnsteadySolver:
         w_n, w_b = extrapolation(dt, now.dt if before is not None else None)
         conv = w_n * now.convection + (w_b * before.convection if before is not None else 0.0)
         om_hist = b_.history(now.omega, before.omega if before is not None else 0.0)
-        q_hist = b_.history(now.q, before.q if before is not None else 0.0) * self._q_scale
+        # the fluid's acceleration at the inner wall (wall pressure, circulation condition)
+        q_hist = b_.history(now.q_seen_by_fluid, before.q_seen_by_fluid if before is not None else 0.0) \
+            * self._q_scale
         z_hist = b_.history(now.z_a, before.z_a if before is not None else 0.0) / self.b
         rhs = flow_rhs(self.grid, conv - om_hist)
         # the predictor uses the leading BDF2 levels only: the wall vorticity (and through it
