@@ -7,7 +7,14 @@ import numpy as np
 import pytest
 
 from lubrication.stokes_exact import stokes_exact_resistance  # noqa: F401  (sign conventions below)
-from lubrication.unsteady import AnnulusMap, PrescribedMotion, Resolution, UnsteadySolver, run_prescribed
+from lubrication.unsteady import (
+    AnnulusMap,
+    PrescribedMotion,
+    Resolution,
+    UnsteadySolver,
+    default_resolution,
+    run_prescribed,
+)
 from lubrication.unsteady.spectral import Grid
 
 A, B = 0.008, 0.01125
@@ -142,7 +149,7 @@ def test_resolution_refuses_too_few_points():
 def test_run_refuses_a_gap_below_the_reach_and_names_it():
     """A motion that closes the gap below the solver's reach is refused before it starts, naming 1 - kappa and when."""
     motion = PrescribedMotion(x_a=(0.0, DELTA * (1.0 - 1e-7), 5.0, 0.0))
-    with pytest.raises(ValueError, match=r"one_minus_kappa = 1 - kappa must stay at least 0.0001 .* reaches 1e-07 .* at t = 0.942"):
+    with pytest.raises(ValueError, match=r"one_minus_kappa = 1 - kappa must stay at least 1e-05 .* reaches 1e-07 .* at t = 0.942"):
         run_prescribed(A, B, 2e-4, 1000.0, motion, t_end=1.0)
     with pytest.raises(ValueError, match="t_end must be in"):
         run_prescribed(A, B, 2e-4, 1000.0, PrescribedMotion(), t_end=-1.0)
@@ -213,3 +220,40 @@ def test_assembled_operator_is_the_applied_one(rng, omk):
     x = op.factorise().solve(rows)
     size = np.abs(dense) @ np.abs(x) + np.abs(rows)
     assert np.max(np.abs(dense @ x - rows) / size) < 1e-13
+
+
+@pytest.mark.parametrize("omk", [0.5, 1e-5])
+def test_equilibrated_operator_is_well_conditioned_near_contact(omk):
+    """The scaled operator's condition number stays far from 1/eps to the reach: the stream function is
+    measured in units of the vorticity times its second-derivative coefficient (operator.py). Measured at
+    16 x 12 points: 1.2e4 (kappa = 0.5) and 2.6e7 (1 - kappa = 1e-5); from unit scales 2.3e5 and 4e14."""
+    from lubrication.unsteady.operator import ImplicitOperator, _equilibrate
+
+    geo = AnnulusMap(A / B, 1.0, (1.0 - omk) * DELTA / B * 1j)
+    grid = Grid(16, 12)
+    op = ImplicitOperator(grid, geo, 2e-4 / B**2, 1.0)
+    blocks = op.blocks()
+    _equilibrate(blocks, op.initial_column_scale())
+    s = 2 * grid.n_r
+    dense = np.zeros((grid.n_modes * s, grid.n_modes * s), dtype=complex)
+    for kb in range(grid.n_modes):
+        for d in range(-2, 3):
+            if 0 <= kb + d < grid.n_modes:
+                dense[kb * s:(kb + 1) * s, (kb + d) * s:(kb + d + 1) * s] = blocks[kb, d + 2]
+    assert np.linalg.cond(dense) < 1e9
+
+
+def test_default_resolution_resolves_the_wide_gap_or_leaves_it_out():
+    """beta K >= 4 where that takes at most 512 points; the least grid (16) beyond and for quasi-steady flow."""
+    from lubrication.unsteady.resolution import FOURIER_DECAY_MODES, MAX_DEFAULT_N_THETA, MIN_N_THETA
+
+    assert default_resolution(AnnulusMap(A, B, 0j)).n_theta == MIN_N_THETA
+    for kappa in (0.5, 0.9, 0.99, 0.999):
+        geo = AnnulusMap(A, B, kappa * DELTA * 1j)
+        res = default_resolution(geo)
+        k_max = (res.n_theta - 1) // 2
+        assert geo.beta * k_max >= FOURIER_DECAY_MODES and MIN_N_THETA <= res.n_theta <= MAX_DEFAULT_N_THETA
+        assert default_resolution(geo, quasi_steady=True).n_theta == MIN_N_THETA
+    near = AnnulusMap(A, B, (1.0 - 1e-4) * DELTA * 1j)
+    assert 2 * FOURIER_DECAY_MODES / near.beta > MAX_DEFAULT_N_THETA
+    assert default_resolution(near, 12) == Resolution(MIN_N_THETA, 12)

@@ -130,7 +130,7 @@ __all__ = ["AnnulusMap", "MIN_ONE_MINUS_KAPPA_UNSTEADY"]
 
 #: Smallest 1 - kappa at which the unsteady solver accepts a geometry (see
 #: :mod:`lubrication.unsteady.resolution` for the measurements behind it).
-MIN_ONE_MINUS_KAPPA_UNSTEADY = 1e-4
+MIN_ONE_MINUS_KAPPA_UNSTEADY = 1e-5
 
 
 @dataclass(frozen=True)
@@ -261,7 +261,7 @@ class AnnulusMap:
         return g
 
     def stream_weight_coefficients(self, x) -> tuple[np.ndarray, np.ndarray, complex]:
-        """H_0(x), dH_0/ds(x) and H_1 = conj(p): H = H_0 + H_1 e^{i theta} + conj(H_1) e^{-i theta} (module docstring)."""
+        """H_0(x), dH_0/ds(x) and H_1 = conj(p): H = H_0 + H_1 e^{i theta} + conj(H_1) e^{-i theta} (module doc)."""
         rho = np.exp(self.s(x))
         p2 = abs(self.p) ** 2
         return 1.0 / rho + p2 * rho, -1.0 / rho + p2 * rho, complex(np.conj(self.p))
