@@ -19,7 +19,13 @@ The shear stress on a wall is mu r d(v/r)/dr; the clockwise torque of the fluid 
 the inner wall is 2 pi a^2 mu v_r(a) (v(a) = 0), on the outer wall
 -2 pi b^2 mu (v_r - v/r)(b). As t -> infinity they tend to -4 pi mu B = 4 pi mu Omega_b
 a^2 b^2/(b^2 - a^2) and its opposite: the fluid drags the held inner wall the way
-the outer one turns, and brakes the outer one.
+the outer one turns, and brakes the outer one. With the inner wall turning as
+well the same series holds with v(a) = Omega_a a in the steady state.
+
+Free cylinder after an impulse
+------------------------------
+:func:`free_cylinder_velocity`: the oscillating cylinder's force, continued to the
+Laplace variable s = i w, closes Newton's law of a free cylinder.
 
 Oscillating inner cylinder
 --------------------------
@@ -46,12 +52,20 @@ per unit length, times e^{i w t}. Limits: w -> 0 gives the steady Stokes drag
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 from scipy import optimize, special
 
 
+@functools.lru_cache(maxsize=4)
+def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights (scipy's tridiagonal eigenproblem; leggauss's dense one took seconds)."""
+    return special.roots_legendre(n)
+
+
+@functools.lru_cache(maxsize=8)
 def couette_eigenvalues(a: float, b: float, n: int) -> np.ndarray:
     """The first ``n`` roots l of J1(l b) Y1(l a) - Y1(l b) J1(l a) = 0."""
     f = lambda x: special.j1(x * b) * special.y1(x * a) - special.y1(x * b) * special.j1(x * a)  # noqa: E731
@@ -79,7 +93,7 @@ def couette_spinup_torques(a: float, b: float, nu: float, rho: float, omega_b: f
     big_b = (omega_a - omega_b) * a * a * b * b / (b * b - a * a)
     lam = couette_eigenvalues(a, b, n_terms)
     # Gauss-Legendre on [a, b]: 400 nodes integrate the 80th eigenfunction's products to rounding
-    xg, wg = np.polynomial.legendre.leggauss(400)
+    xg, wg = _gauss_legendre(400)
     r = 0.5 * (b - a) * xg + 0.5 * (a + b)
     wg = 0.5 * (b - a) * wg
     t = np.atleast_1d(np.asarray(t, dtype=float))
