@@ -239,10 +239,10 @@ def _column_max(absb: np.ndarray) -> np.ndarray:
 
 
 def _scale_columns(blocks: np.ndarray, col: np.ndarray) -> None:
+    """Scale block [k, d + 2] by the column scales of block k + d (clipped: blocks outside are zero)."""
     mm = blocks.shape[0]
-    for d in range(-2, 3):
-        lo, hi = max(0, -d), min(mm, mm - d)
-        blocks[lo:hi, d + 2] *= col[lo + d:hi + d, None, :]
+    index = np.clip(np.arange(mm)[:, None] + np.arange(-2, 3)[None, :], 0, mm - 1)
+    blocks *= col[index][:, :, None, :]
 
 
 def _equilibrate(blocks: np.ndarray, col0: np.ndarray | None = None,
