@@ -1,0 +1,36 @@
+"""Unsteady plane Navier-Stokes flow between two eccentric circular walls that move rigidly.
+
+The fixed concentric annulus r0 <= |w| <= 1 is mapped conformally onto the eccentric
+one by a Moebius map that slides with the inner centre; the flow is discretised
+by Fourier modes around and Chebyshev points across, in stream function and
+vorticity, and stepped by a variable-step IMEX BDF2 that solves the new flow and
+the new wall velocities in one linear system.
+
+    mapping.py       the map, its metric (five Fourier coefficients) and the mesh velocity
+    spectral.py      Chebyshev and Fourier tools of one resolution
+    resolution.py    how many points a geometry needs; the default resolution
+    operator.py      the implicit psi-omega operator: apply, assemble, banded LU
+    walls.py         wall data of rigid motions, the circulation condition, the loads
+    system.py        the monolithic system of one step (flow + C_in + wall velocities)
+    timestepping.py  variable-step BDF2 coefficients, predictor, error estimate, step law
+    solver.py        UnsteadySolver: state, start, step
+    prescribed.py    run_prescribed: prescribed wall motions from rest, time series and snapshots
+"""
+
+from .mapping import MIN_ONE_MINUS_KAPPA_UNSTEADY, AnnulusMap
+from .prescribed import Harmonic, PrescribedMotion, PrescribedRun, run_prescribed
+from .resolution import Resolution, default_resolution
+from .solver import (
+    LOAD_NAMES,
+    VELOCITY_NAMES,
+    FlowLevel,
+    StepControl,
+    StepResult,
+    UnsteadySolver,
+    prescribed_wall,
+)
+from .timestepping import Bdf
+
+__all__ = ["LOAD_NAMES", "MIN_ONE_MINUS_KAPPA_UNSTEADY", "VELOCITY_NAMES", "AnnulusMap", "Bdf", "FlowLevel",
+           "Harmonic", "PrescribedMotion", "PrescribedRun", "Resolution", "StepControl", "StepResult",
+           "UnsteadySolver", "default_resolution", "prescribed_wall", "run_prescribed"]
