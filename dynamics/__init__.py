@@ -10,11 +10,11 @@ Simulate a device, or load a scene and run it::
 
 The package, from the bottom up::
 
-    engine/      the compiled Radau IIA integrator (dense output, events)
-    equations/   the full (2.1)-(2.4) and reduced (2.11) equations, their force models, special
-                 solutions and validity limits
+    equations/   the full (2.1)-(2.4) and reduced (2.11) equations, the cylinders coupled to the
+                 unsteady Navier-Stokes flow, special solutions and validity limits (the force
+                 models are lubrication's, the integrator numerics')
     contact/     rough contact (section 5): the phases, the hybrid driver, steady states
-    simulation.py one simulation API and one result type for every model
+    simulation.py one simulation API; trajectory.py the one result type of every model
     scenes/      scene files: schema, units, reading
     app/         a scene in, files out; the automatic model choice; sweeps; the command line
 
@@ -31,8 +31,7 @@ _WHERE = {
     "ALUMINIUM": "apparatus", "PRESETS": "apparatus", "STEEL": "apparatus", "Apparatus": "apparatus",
     "preset": "apparatus",
     "ContactParams": "contact.reduced", "RoughContact": "contact.roughness",
-    "FORCE_MODELS": "equations.forces", "ForceModel": "equations.forces", "force_model": "equations.forces",
-    "Limits": "equations.limits", "ReducedParams": "equations.reduced",
+    "Limits": "equations.limits", "NavierStokesOptions": "equations.navier_stokes", "ReducedParams": "equations.reduced",
     "Initial": "initial",
     "Trajectory": "trajectory", "simulate": "simulation", "ValidityWarning": "equations.limits",
     "Scene": "scenes", "SceneError": "scenes", "load_scene": "scenes", "parse_scene": "scenes",

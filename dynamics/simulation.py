@@ -44,13 +44,14 @@ from numerics.hybrid import run_phases
 from numerics.integrate import METHODS, integrate
 from numerics.jit import compile_watch
 
-__all__ = ["MAX_ROWS", "MAX_STEPS", "Initial", "Trajectory", "simulate"]
+__all__ = ["EQUATIONS", "MAX_ROWS", "MAX_STEPS", "NAVIER_STOKES_RTOL", "Initial", "Trajectory", "simulate"]
 
 
 def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, *, equations: str | None = None,
              forces: KernelModel | str = "stokes-exact", contact=None, limits: Limits = Limits(),
-             method: str = "radau", rtol: float = 1e-8, output_interval: float | None = None, t_eval=None,
-             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper") -> Trajectory:
+             method: str = "radau", rtol: float | None = None, output_interval: float | None = None, t_eval=None,
+             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper",
+             navier_stokes=None) -> Trajectory:
     """Integrate a model of the snail cylinder from ``initial`` over ``t_end``.
 
     Parameters
@@ -62,8 +63,11 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         not free in (2.11) and must be 0 for the reduced equations.
     t_end : float
         Duration: s with an apparatus, tau without.
-    equations : {"full", "reduced"}, optional
-        Default "full" for an apparatus, "reduced" for groups.
+    equations : {"full", "reduced", "navier-stokes"}, optional
+        Default "full" for an apparatus, "reduced" for groups; "navier-stokes": the
+        unsteady flow of the gap coupled to both cylinders, the reference without a
+        closure (:mod:`dynamics.equations.navier_stokes`; needs an apparatus, takes no
+        force model or contact).
     forces : KernelModel, str or TransportedFilm
         The full equations' force model: a registered name (:func:`lubrication.registry.names`;
         "stokes-exact", the exact 2-D Stokes forces, by default; "closed-form" the paper's
@@ -77,8 +81,9 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         Validity limits and what to do at them (:mod:`dynamics.equations.limits`).
     method : {"radau", "Radau", "BDF", "LSODA"}
         The compiled Radau IIA integrator, or one of scipy's (:mod:`numerics.integrate`).
-    rtol : float
-        Relative tolerance, in [100 eps, 0.1].
+    rtol : float, optional
+        Relative tolerance, in [100 eps, 0.1]; default 1e-8 for the ODEs, :data:`NAVIER_STOKES_RTOL` for the
+        flow solver's step control.
     output_interval : float, optional
         Output rows at 0, dt, 2 dt, ... from the dense output (and at every
         event); by default one row per integrator step. The regime and the
@@ -93,6 +98,9 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         The full equations' treatment of the fluid turning with the line of
         centres: (2.1)-(2.2) as printed, or with m'_a on the centripetal and
         Coriolis terms (:func:`dynamics.equations.full.frame_force`).
+    navier_stokes : NavierStokesOptions, optional
+        The flow solver's grid and the times of flow snapshots
+        (:class:`dynamics.equations.navier_stokes.NavierStokesOptions`).
 
     Returns
     -------
@@ -113,15 +121,19 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     unit = "tau" if dimensionless else "s"
     t_end = check_range("t_end", t_end, 0.0, math.inf, low_open=True, unit=unit)
     equations = equations or ("reduced" if dimensionless else "full")
-    if equations not in ("full", "reduced"):
-        msg = f"equations must be 'full' or 'reduced', got {equations!r}"
+    if equations not in EQUATIONS:
+        msg = f"equations must be one of {', '.join(map(repr, EQUATIONS))}, got {equations!r}"
         raise ValueError(msg)
-    if dimensionless and equations == "full":
-        msg = "the full equations need a physical apparatus: pass an Apparatus (Apparatus.from_groups builds one)"
+    if dimensionless and equations != "reduced":
+        msg = (f"the {equations} equations need a physical apparatus: pass an Apparatus (Apparatus.from_groups "
+               "builds one)")
         raise ValueError(msg)
+    navier_stokes = _check_navier_stokes(equations, navier_stokes, contact, frame_terms)
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
+    if rtol is None:
+        rtol = NAVIER_STOKES_RTOL if equations == "navier-stokes" else 1e-8
     rtol = check_range("rtol", rtol, 100 * np.finfo(float).eps, 0.1, high_open=False)
     if isinstance(max_steps, bool) or not isinstance(max_steps, (int, np.integer)) or not 1 <= max_steps <= MAX_STEPS:
         msg = f"max_steps must be an integer in [1, {MAX_STEPS:g}], got {max_steps!r}"
@@ -170,14 +182,18 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     if film and (equations == "reduced" or contact is not None):
         msg = "a transported film (forces=TransportedFilm) runs in the full equations without contact"
         raise ValueError(msg)
-    model = (None if equations == "reduced" or film else forces if isinstance(forces, KernelModel)
+    model = (None if equations != "full" or film else forces if isinstance(forces, KernelModel)
              else kernel_model(forces))
     bar = _Bar(t_end, unit) if progress is True else None
     run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms)
     start = time.perf_counter()
     try:
         with compile_watch(on_first=bar.compiling if bar is not None else None) as watch:
-            if film:
+            if equations == "navier-stokes":
+                from dynamics.equations.navier_stokes import navier_stokes_run
+
+                trajectory = navier_stokes_run(run, initial, navier_stokes)
+            elif film:
                 from dynamics.equations.film import film_run
 
                 trajectory = film_run(run, initial, forces)
@@ -224,6 +240,33 @@ def _warn(trajectory: Trajectory) -> None:
     inertia = inertia_warning(trajectory.info.get("inertia", {}))
     if inertia:
         warnings.warn(f"fluid inertia: {inertia}", ValidityWarning, stacklevel=3)
+
+
+#: The equations :func:`simulate` integrates.
+EQUATIONS = ("full", "reduced", "navier-stokes")
+#: The flow solver's default relative error per step (vorticity, wall velocities, A's position): its
+#: trajectories' error against halved tolerances is in docs/navier_stokes.md.
+NAVIER_STOKES_RTOL = 1e-4
+
+
+def _check_navier_stokes(equations, options, contact, frame_terms):
+    """The Navier-Stokes options, refused where they do not apply, and what the flow does not take."""
+    from dynamics.equations.navier_stokes import NavierStokesOptions
+
+    if equations != "navier-stokes":
+        if options is not None:
+            raise ValueError("navier_stokes options apply to equations = 'navier-stokes' only")
+        return None
+    if contact is not None:
+        raise ValueError("contact: the Navier-Stokes equations run without a contact model (smooth walls)")
+    if frame_terms != "paper":
+        raise ValueError("frame_terms closes the ODE models' fluid inertia; the Navier-Stokes equations have none")
+    if options is None:
+        return NavierStokesOptions()
+    if not isinstance(options, NavierStokesOptions):
+        msg = f"navier_stokes must be a NavierStokesOptions, got {type(options).__name__}"
+        raise TypeError(msg)
+    return options
 
 
 #: Most accepted steps a run may take: every step is kept in memory (about 300 bytes a step at the

@@ -116,3 +116,13 @@ def test_the_check_sees_a_planted_violation(tmp_path):
     finally:
         planted.unlink()
     assert ("dynamics.equations.full", "_A") in imports and ("lubrication", "kernels") in imports
+
+
+def test_every_name_the_packages_export_on_first_use_is_there():
+    """The lazy exports of ``dynamics`` and ``lubrication`` name modules that exist and define them."""
+    import dynamics
+    import lubrication
+
+    for package in (dynamics, lubrication):
+        missing = [name for name in package.__all__ if getattr(package, name, None) is None]
+        assert not missing, (package.__name__, missing)

@@ -71,7 +71,14 @@ from .operator import unpack
 from .resolution import Resolution, default_resolution
 from .spectral import Grid
 from .system import StepSystem, flow_rhs, one_blas_thread
-from .timestepping import Bdf, bdf, error_constant, extrapolation, next_step, predictor_weights
+from .timestepping import (
+    Bdf,
+    bdf,
+    error_constant,
+    extrapolation,
+    next_step,
+    predictor_weights,
+)
 
 __all__ = ["FlowLevel", "LOAD_NAMES", "StepControl", "StepResult", "UnsteadySolver", "VELOCITY_NAMES",
            "prescribed_wall"]
@@ -550,6 +557,29 @@ class UnsteadySolver:
         self.counters.steps += 1
         return StepResult(True, dt, dt_next, err, corrections, factorisations, sweeps_total)
 
+    def regrid(self, resolution: Resolution) -> None:
+        """Carry the stored levels over to another grid (a coupled run whose gap narrows or widens).
+
+        Fourier modes are kept or truncated and new ones start at zero; across the gap the
+        values are the Chebyshev interpolant's at the new points. Both are exact for what the
+        new grid can hold, at the stored geometries; the factorisation is made anew.
+        """
+        if not self.levels:
+            raise ValueError("regrid needs a started solver")
+        old = self.grid
+        new = Grid(resolution.n_theta, resolution.n_r, resolution.dealias)
+        across = _chebyshev_transfer(old.n_r, new.n_r)
+        keep = min(old.K, new.K)
+
+        def carry(f: np.ndarray) -> np.ndarray:
+            out = np.zeros((new.n_modes, old.n_r), dtype=complex)
+            out[new.K - keep:new.K + keep + 1] = f[old.K - keep:old.K + keep + 1]
+            return out @ across.T
+
+        for level in self.levels:
+            level.psi, level.omega, level.convection = carry(level.psi), carry(level.omega), carry(level.convection)
+        self.grid, self.resolution, self._factors = new, resolution, None
+
     # ------------------------------------------------------------------ output
 
     def fields(self, level: FlowLevel | None = None) -> dict[str, np.ndarray]:
@@ -579,6 +609,17 @@ class UnsteadySolver:
         vel = -1j * (ps_s + 1j * ps_t) / np.conj(geo.dzeta_dsigma(w)) * self.b
         return {"x": zeta.real, "z": zeta.imag, "vorticity": -grid.to_physical(lv.omega, n),
                 "stream_function": psi * self.b**2, "u_x": vel.real, "u_z": vel.imag}
+
+
+def _chebyshev_transfer(n_from: int, n_to: int) -> np.ndarray:
+    """The matrix taking values at n_from Chebyshev-Lobatto points to the interpolant's values at n_to points."""
+    if n_from == n_to:
+        return np.eye(n_from)
+    x_from = np.cos(np.pi * np.arange(n_from) / (n_from - 1))
+    x_to = np.cos(np.pi * np.arange(n_to) / (n_to - 1))
+    # columns: the interpolant of each unit vector, through its Chebyshev coefficients
+    coefficients = np.polynomial.chebyshev.chebfit(x_from, np.eye(n_from), n_from - 1)
+    return np.polynomial.chebyshev.chebval(x_to, coefficients).T
 
 
 def _rms(f: np.ndarray) -> float:
