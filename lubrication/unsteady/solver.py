@@ -186,6 +186,7 @@ class FlowLevel:
 
     @property
     def q_seen_by_fluid(self) -> np.ndarray:
+        """``fluid_q`` where given, else ``q``."""
         return self.q if self.fluid_q is None else self.fluid_q
 
 
