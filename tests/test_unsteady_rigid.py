@@ -29,7 +29,7 @@ def _rigid_solver(z0, resolution):
     psi, omega = solver.fields_from_stream_function(z0, lambda z: OMEGA * (np.abs(z) ** 2 - B * B) / 2.0)
     u0 = -1j * OMEGA * z0
     c_in = 0.0
-    solver.start(z0, (u0.real, u0.imag, OMEGA, OMEGA), psi=psi, omega=omega, c_in=c_in)
+    solver.start(z0, (u0.real, u0.imag, OMEGA, OMEGA), h_psi=psi, omega=omega, c_in=c_in)
     return solver
 
 

@@ -2,14 +2,15 @@
 
 The fixed concentric annulus r0 <= |w| <= 1 is mapped conformally onto the eccentric
 one by a Moebius map that slides with the inner centre; the flow is discretised
-by Fourier modes around and Chebyshev points across, in stream function and
-vorticity, and stepped by a variable-step IMEX BDF2 that solves the new flow and
-the new wall velocities in one linear system.
+by Fourier modes around and Chebyshev points across, in vorticity and the stream
+function times the weight H = |1 + conj(p) w|^2/|w| (which makes the exact Stokes
+flows two Fourier modes wide at any gap), and stepped by a variable-step IMEX BDF2
+that solves the new flow and the new wall velocities in one linear system.
 
-    mapping.py       the map, its metric (five Fourier coefficients) and the mesh velocity
+    mapping.py       the map, its metric (five Fourier coefficients), the weight H, the mesh velocity
     spectral.py      Chebyshev and Fourier tools of one resolution
     resolution.py    how many points a geometry needs; the default resolution
-    operator.py      the implicit psi-omega operator: apply, assemble, banded LU
+    operator.py      the implicit (H psi)-omega operator: apply, assemble, scale, banded LU
     walls.py         wall data of rigid motions, the circulation condition, the loads
     system.py        the monolithic system of one step (flow + C_in + wall velocities)
     timestepping.py  variable-step BDF2 coefficients, predictor, error estimate, step law

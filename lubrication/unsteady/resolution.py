@@ -19,7 +19,7 @@ Laplacian) nearly vanishes, and they carry the solve's rounding undamped. Measur
 the oscillation along e_chi at delta^2 w/nu = 0.3, amplitude 1e-3 of the gap, the force's
 amplitude against the quasi-steady exact one (the unsteady share there is ~1e-3 of it):
 
-    1 - kappa = 1e-4:  n_theta = 16: 5e-7,  64: 7e-7,  256: 6e-5
+    1 - kappa = 1e-4:  n_theta = 16: 5e-8,  64: 8e-7,  256: 6e-5
     1 - kappa = 1e-5:  n_theta = 16: 5e-6,  64: 5e-5,  256: 9e-4
     1 - kappa = 1e-6:  n_theta = 16: 1e-4,  64: 5e-3
 

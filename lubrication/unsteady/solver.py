@@ -11,13 +11,18 @@ around) and the vorticity omega = -Lap psi (counterclockwise-positive, walls.py)
 the arbitrary Lagrangian-Eulerian form at fixed computational coordinates, x_t the
 velocity of a grid point (:meth:`AnnulusMap.mesh_velocity`). In the map variables
 u . grad omega = g (psi_theta omega_s - psi_s omega_theta) and
-x_t . grad omega = Re(mu) omega_s + Im(mu) omega_theta. In this non-conservative
+x_t . grad omega = Re(mu) omega_s + Im(mu) omega_theta; the solver's unknown is
+Psi = H psi (mapping.py), and g psi_theta = (H Psi_theta - H_theta Psi)/k,
+g psi_s = (H Psi_s - H_s Psi)/k are formed without dividing by H. In this non-conservative
 collocation form the geometric conservation law holds trivially (a uniform field
 has no gradient, whatever the grid does); the tests check it on a moving grid.
 
 Time step (timestepping.py): variable-step BDF2 (implicit Euler on the first two
 steps: the initial level, where the walls may start impulsively, enters no BDF
-formula or predictor after the first step) on the
+formula or predictor after the first step; in the first step the fluid's
+acceleration at the inner wall, which the wall pressure and the circulation
+condition need, starts from the fluid's velocity there, not the wall's:
+:attr:`FlowLevel.fluid_q`) on the
 viscous term, the metric and the boundary conditions; the convective term
 N = -(u - x_t) . grad omega explicit, extrapolated linearly from the last two
 levels. One step solves, in one linear system (system.py), the new flow, the
@@ -67,7 +72,7 @@ import numpy as np
 
 from ..geometry import check_finite, check_range
 from .mapping import MIN_ONE_MINUS_KAPPA_UNSTEADY, AnnulusMap
-from .operator import unpack
+from .operator import pack, unpack
 from .resolution import Resolution, default_resolution
 from .spectral import Grid
 from .system import StepSystem, flow_rhs, one_blas_thread
@@ -150,7 +155,7 @@ class FlowLevel:
         Inner centre (m).
     q : ndarray, shape (4,)
         Wall velocities :data:`VELOCITY_NAMES`.
-    psi, omega : ndarray, shape (n_modes, n_r)
+    h_psi, omega : ndarray, shape (n_modes, n_r)
         Fourier-Chebyshev coefficients of Psi = H psi (the stream function times the
         weight H of :mod:`lubrication.unsteady.mapping`) and of omega
         (counterclockwise-positive, walls.py), in the solver's length unit b:
@@ -177,7 +182,7 @@ class FlowLevel:
     t: float
     z_a: complex
     q: np.ndarray
-    psi: np.ndarray
+    h_psi: np.ndarray
     omega: np.ndarray
     c_in: float
     loads: np.ndarray
@@ -188,6 +193,7 @@ class FlowLevel:
 
     @property
     def q_seen_by_fluid(self) -> np.ndarray:
+        """``fluid_q`` where given, else ``q``."""
         return self.q if self.fluid_q is None else self.fluid_q
 
 
@@ -283,8 +289,11 @@ class UnsteadySolver:
             self.grid = Grid(res.n_theta, res.n_r, res.dealias)
 
     def start(self, z_a: complex = 0j, q=(0.0, 0.0, 0.0, 0.0), *, t: float = 0.0,
-              psi: np.ndarray | None = None, omega: np.ndarray | None = None, c_in: float = 0.0):
-        """Set the initial level: fluid at rest unless ``psi`` and ``omega`` coefficients are given."""
+              h_psi: np.ndarray | None = None, omega: np.ndarray | None = None, c_in: float = 0.0):
+        """Set the initial level: fluid at rest unless ``h_psi`` and ``omega`` coefficients are given.
+
+        ``h_psi`` and ``omega`` are the coefficients of :class:`FlowLevel` (H psi and the
+        vorticity, in units of b), as :meth:`fields_from_stream_function` makes them."""
         geo = self.geometry(complex(z_a))
         self._ensure_grid(geo)
         q = np.array(q, dtype=float)
@@ -292,10 +301,10 @@ class UnsteadySolver:
             msg = f"q must be 4 finite numbers (U_x, U_z, Omega_a, Omega_b), got {q!r}"
             raise ValueError(msg)
         shape = (self.grid.n_modes, self.grid.n_r)
-        psi = np.zeros(shape, dtype=complex) if psi is None else np.array(psi, dtype=complex)
+        psi = np.zeros(shape, dtype=complex) if h_psi is None else np.array(h_psi, dtype=complex)
         omega = np.zeros(shape, dtype=complex) if omega is None else np.array(omega, dtype=complex)
         if psi.shape != shape or omega.shape != shape:
-            msg = f"psi and omega must have shape {shape}"
+            msg = f"h_psi and omega must have shape {shape}"
             raise ValueError(msg)
         qu = q * self._q_scale
         conv = self.convection(geo, psi, omega, complex(qu[0], qu[1]))
@@ -407,13 +416,13 @@ class UnsteadySolver:
             return system, f
         return system, None
 
-    def _solve(self, geo, b_: Bdf, rhs, wall, q_hist):
+    def _solve(self, geo, b_: Bdf, rhs, wall, q_hist, guess=None):
         system, factors = self._system(geo, b_.c0)
         e, g, h, lam0 = system.borders(b_, wall, q_hist, self.g_eff / self.b)
         sweeps = 0
         out = None
         if factors is not None:
-            out = system.solve(rhs, e, g, h, factors)
+            out = system.solve(rhs, e, g, h, factors, guess=guess)
             if out is not None:
                 sweeps = out[2]
         factorised = 0
@@ -482,13 +491,17 @@ class UnsteadySolver:
         pw = predictor_weights(dt, steps) if smooth else (1.0,)
         controlled = smooth >= 2
         q_pred = sum(w * level.q for w, level in zip(pw, lv)) * self._q_scale
+        # the extrapolated solution starts a defect correction
+        guess = (pack(sum(w * level.h_psi for w, level in zip(pw, lv)),
+                      sum(w * level.omega for w, level in zip(pw, lv))),
+                 np.array([sum(w * level.c_in for w, level in zip(pw, lv)), *q_pred]))
         corrections = 0
         factorisations = 0
         sweeps_total = 0
         if z_new is not None:
             z = complex(z_new) / self.b
             geo = self.geometry(z * self.b)
-            x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist)
+            x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist, guess)
             factorisations += nf
             sweeps_total += sw
         else:
@@ -497,7 +510,8 @@ class UnsteadySolver:
             converged = False
             for corrections in range(1, ctl.max_corrections + 1):
                 geo = self.geometry(z * self.b)
-                x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist)
+                x, s, loads, nf, sw = self._solve(geo, b_, rhs, wall_, q_hist, guess)
+                guess = (x, s)
                 factorisations += nf
                 sweeps_total += sw
                 z_next = (complex(s[1], s[2]) - z_hist) / b_.c0
@@ -602,9 +616,9 @@ class UnsteadySolver:
         zeta = geo.zeta(w) * self.b
         scale = 2.0 / geo.tau
         h, h_s, h_t = geo.stream_weight_fields(grid.x, grid.theta)
-        psi = grid.to_physical(lv.psi, n) / h
-        ps_s = (grid.to_physical(scale * grid.d_x(lv.psi), n) - h_s * psi) / h
-        ps_t = (grid.to_physical(grid.d_theta(lv.psi), n) - h_t * psi) / h
+        psi = grid.to_physical(lv.h_psi, n) / h
+        ps_s = (grid.to_physical(scale * grid.d_x(lv.h_psi), n) - h_s * psi) / h
+        ps_t = (grid.to_physical(grid.d_theta(lv.h_psi), n) - h_t * psi) / h
         # u_x + i u_z = -i grad psi, grad psi = (psi_s + i psi_theta)/conj(zeta_sigma)
         vel = -1j * (ps_s + 1j * ps_t) / np.conj(geo.dzeta_dsigma(w)) * self.b
         return {"x": zeta.real, "z": zeta.imag, "vorticity": -grid.to_physical(lv.omega, n),
