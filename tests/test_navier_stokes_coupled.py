@@ -145,7 +145,7 @@ def test_regrid_carries_the_flow_exactly():
     solver = UnsteadySolver(0.008, 0.01125, 2e-4, 960.0, Resolution(16, 10))
     z_a = 0.6 * 0.00325 * (0.3 + 1j)
     psi, omega = solver.fields_from_stream_function(z_a, lambda zeta: np.real(zeta) ** 2 * np.imag(zeta) * 40.0)
-    solver.start(z_a, (0.0, 0.0, 0.0, 0.0), psi=psi, omega=omega)
+    solver.start(z_a, (0.0, 0.0, 0.0, 0.0), h_psi=psi, omega=omega)
     before = solver.fields()["vorticity"]
     solver.regrid(Resolution(32, 13))
     after = solver.fields()["vorticity"]

@@ -287,7 +287,7 @@ def _steady_start(solver, z_a: complex, q: np.ndarray) -> None:
         dt *= 2.0
     level = solver.state
     solver.control = control
-    solver.start(z_a, q, psi=level.psi, omega=level.omega, c_in=level.c_in)
+    solver.start(z_a, q, h_psi=level.h_psi, omega=level.omega, c_in=level.c_in)
 
 
 def energy_columns(ap, t, x, z, u_x, u_z, omega_a, omega_b, x_b, kinetic_flow, dissipation) -> dict:

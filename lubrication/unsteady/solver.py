@@ -591,7 +591,7 @@ class UnsteadySolver:
             return out @ across.T
 
         for level in self.levels:
-            level.psi, level.omega, level.convection = carry(level.psi), carry(level.omega), carry(level.convection)
+            level.h_psi, level.omega, level.convection = carry(level.h_psi), carry(level.omega), carry(level.convection)
         self.grid, self.resolution, self._factors = new, resolution, None
 
     # ------------------------------------------------------------------ output
