@@ -299,10 +299,3 @@ def test_choice_is_plain_data():
     assert json.loads(json.dumps(Choice("full", reason="r").as_dict()))["model"] == "full"
 
 
-@pytest.mark.slow
-def test_validation_group_passes_in_its_quick_form(tmp_path):
-    from validation import model_choice_checks
-
-    checks, figures, paragraph = model_choice_checks.run(tmp_path, quick=True)
-    assert checks and all(c.passed for c in checks), [c.name for c in checks if not c.passed]
-    assert figures == [] and "closed-form" in paragraph

@@ -116,3 +116,18 @@ def test_the_check_sees_a_planted_violation(tmp_path):
     finally:
         planted.unlink()
     assert ("dynamics.equations.full", "_A") in imports and ("lubrication", "kernels") in imports
+
+
+def test_the_check_modules_draw_and_word_nothing(graph):
+    """A study of ``validation`` computes and checks; its figures and markdown are in ``validation.reports``.
+
+    No check module imports matplotlib or ``validation.reports`` (lazily neither); only the
+    suite and the command line, which run the groups, import the reports.
+    """
+    runners = {"validation.suite", "validation.cli"}
+    checks = [m for m in graph
+              if m.startswith("validation") and not m.startswith("validation.reports") and m not in runners]
+    wrong = [(module, imported) for module in checks for imported, _ in graph[module]
+             if imported.split(".")[0] == "matplotlib" or imported.startswith("validation.reports")]
+    assert not wrong
+    assert any(m.startswith("validation.reports.") for m in graph)

@@ -41,7 +41,8 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 from dynamics.trajectory import PHASE_CODES
-from validation.rough_speeds import speed_table, speed_table_markdown
+from validation.reports.rough_speeds import speed_table_markdown
+from validation.rough_speeds import speed_table
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8
