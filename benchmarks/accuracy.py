@@ -75,8 +75,7 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import RESULTS, publish
-from benchmarks.reynolds import _machine, _time_all, _Timer
+from benchmarks.harness import RESULTS, Timer, interleave, machine, publish, time_all
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
@@ -212,15 +211,15 @@ def force_case(delta: float, kappa: float, *, rounds=ROUNDS, batch_seconds=BATCH
         else:
             opts = dict(c["options"], points_per_cell=1) if c["model"] == "reynolds" else {}
             got = resistance(annulus, FLUID, c["model"], **opts)
-            timers.append(_Timer((row["label"], "python"), _python_batch(
+            timers.append(Timer((row["label"], "python"), _python_batch(
                 lambda m=c["model"], o=opts: fluid_forces(annulus, TIMED_MOTION, FLUID, m, **o))))
         model = _eom_model(c)
         if model is not None:
-            timers.append(_Timer((row["label"], "jit"), _jit_batch(model, annulus)))
+            timers.append(Timer((row["label"], "jit"), _jit_batch(model, annulus)))
         row["errors"] = _row_errors(got, truth)
         row["error"] = row["errors"]["row"]
         rows.append(row)
-    times = _time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
+    times = time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
     for row in rows:
         for face in ("python", "jit"):
             if (row["label"], face) in times:
@@ -289,15 +288,14 @@ def trajectory_study(delta: float, *, methods=METHODS, rtols=RTOLS, repeats=TRAJ
                    for e, f in (("reduced", "closed-form"), ("full", "closed-form"), ("full", "stokes"))]
     for equations, forces in {(c[0], c[1]) for c in configs}:  # warm-up: compile each right-hand side
         _run(app, equations, forces, "radau", 1e-4)
-    rng = np.random.default_rng(seed)
-    walls: dict = {c: [] for c in configs}
-    finals = {}
-    for _ in range(repeats):
-        for i in rng.permutation(len(configs)):
-            c = configs[i]
-            tr = _run(app, *c)
-            walls[c].append(tr.wall_time_s)
-            finals[c] = (tr, _final(tr))
+    finals = {}  # each configuration's last run and its final state
+
+    def timed(c):
+        tr = _run(app, *c)
+        finals[c] = (tr, _final(tr))
+        return tr.wall_time_s
+
+    walls = interleave(configs, repeats, np.random.default_rng(seed), timed)
     rows = []
     for c in configs:
         tr, fin = finals[c]
@@ -329,7 +327,7 @@ def run(deltas=DELTAS, kappas=KAPPAS, trajectory_deltas=TRAJECTORY_DELTAS, equat
         trajectories.append(trajectory_study(delta, repeats=repeats if full else 1, full=full))
         print(f"trajectories delta/a {delta}: {time.perf_counter() - started:.0f} s", file=sys.stderr)
     return {
-        "machine": _machine(),
+        "machine": machine(),
         "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "settings": {"deltas": list(deltas), "kappas": list(kappas), "a": A, "length": LENGTH,
                      "nu": FLUID.nu, "rho": FLUID.rho, "reynolds_cells": list(REYNOLDS_CELLS),

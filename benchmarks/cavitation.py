@@ -38,8 +38,7 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish  # noqa: E402
-from benchmarks.reynolds import _machine, _time_all, _Timer  # noqa: E402
+from benchmarks.harness import Timer, machine, publish, time_all  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, reynolds_forces  # noqa: E402
 from lubrication.cavitation import (  # noqa: E402
     CAVITATION_MODELS,
@@ -149,15 +148,15 @@ def run(cells=CELLS, rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed=0) -> dict
             records.append({"model": model, "n": n, "passes": film.passes,
                             "cavitated_fraction": float(np.count_nonzero(film.p <= P_CAV) / n)
                             if model != "none" else 0.0})
-            timers += [_Timer((model, n, "jit"), _jit_batch(model, annulus, n)),
-                       _Timer((model, n, "python"), _python_batch(model, annulus, n))]
+            timers += [Timer((model, n, "jit"), _jit_batch(model, annulus, n)),
+                       Timer((model, n, "python"), _python_batch(model, annulus, n))]
     start = time.perf_counter()
-    times = _time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
+    times = time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
     for record in records:
         for path in ("jit", "python"):
             record[path] = times[(record["model"], record["n"], path)]
     return {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            "machine": _machine(), "timing_seconds": time.perf_counter() - start,
+            "machine": machine(), "timing_seconds": time.perf_counter() - start,
             "case": {"kappa": KAPPA, "eps_dot": MOTION.eps_dot, "omega_a": MOTION.omega_a,
                      "omega_b": MOTION.omega_b, "p_ref": P_REF, "p_cav": P_CAV, "nu": FLUID.nu, "rho": FLUID.rho,
                      "points_per_cell": POINTS_PER_CELL, "rounds": rounds, "batch_seconds": batch_seconds},

@@ -15,16 +15,12 @@ evaluations and phase switches; ratios are to the smooth-wall run of the same mo
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
-
-import numpy as np
 
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import machine, publish, repeat
 from dynamics.apparatus import Apparatus
 from dynamics.contact.reduced import ContactParams
 from dynamics.equations.limits import Limits
@@ -41,13 +37,9 @@ PSIS = (0.0, 0.05, 0.5)
 
 
 def _median_run(simulate) -> dict:
-    simulate()  # warm-up
-    times, run = [], None
-    for _ in range(REPEATS):
-        start = time.perf_counter()
-        run = simulate()
-        times.append(time.perf_counter() - start)
-    return {"seconds": float(np.median(times)), "steps": run.steps, "nfev": run.nfev,
+    timed = repeat(simulate, REPEATS)
+    run = timed.result
+    return {"seconds": timed.median, "steps": run.steps, "nfev": run.nfev,
             "switches": len(run.info.get("switches", ())), "stop": run.event or "t_end", "status": run.status}
 
 
@@ -70,7 +62,7 @@ def run() -> dict:
     for psi in PSIS:
         full[f"contact, psi = {psi:g}"] = (lambda psi=psi: simulate(
             device, START, t_end, forces=kernel_model("closed-form"), contact=ContactParams(0.98, psi), limits=SMOOTH_LIMITS))
-    return {"machine": _machine(), "t_end_tau": T_END, "repeats": REPEATS,
+    return {"machine": machine(), "t_end_tau": T_END, "repeats": REPEATS,
             "rows": _rows(reduced), "full_rows": _rows(full)}
 
 

@@ -51,8 +51,7 @@ from scipy.integrate import solve_ivp
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import machine, publish, repeat
 from numerics.engine import SAMPLE, check_inputs, engine_for, integrate, no_events
 from numerics.engine.compiled import first_class, function_types
 from numerics.jit import jit
@@ -151,13 +150,9 @@ def problems() -> dict:
 
 
 def _median(call, repeats):
-    call()  # warm-up: compilation and caches excluded
-    times, out = [], None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        out = call()
-        times.append(time.perf_counter() - start)
-    return float(np.median(times)), float(min(times)), out
+    """(median, fastest, last result) of ``repeats`` timed calls after a warm-up (:func:`harness.repeat`)."""
+    timed = repeat(call, repeats)
+    return timed.median, timed.fastest, timed.result
 
 
 def _scaled_error(y, y_ref, rtol, atol):
@@ -306,7 +301,7 @@ def run(rtols=RTOLS, repeats=REPEATS, scipy_repeats=SCIPY_REPEATS, measure_compi
                                                                         - model_share),
                             "rows": rows})
     return {
-        "machine": _machine(),
+        "machine": machine(),
         "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "repeats": repeats, "scipy_repeats": scipy_repeats,
         "records": records,

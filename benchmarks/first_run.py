@@ -31,8 +31,7 @@ import numpy as np
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import machine, publish
 
 REPEATS = 3
 #: Warm runs per repeat, each after a timing of :data:`FLOOR`.
@@ -74,7 +73,7 @@ def run(repeats: int = REPEATS) -> dict:
                                         {**env, "NUMBA_CACHE_DIR": str(scratch / f"numba{i}")}))
     med = {name: float(np.median(v))
            for name, v in (("first", first), ("second", second), ("floor", floor), ("compiling", compiling))}
-    return {"machine": _machine(), "repeats": repeats, "warm_runs": WARM_RUNS, "floor_command": FLOOR,
+    return {"machine": machine(), "repeats": repeats, "warm_runs": WARM_RUNS, "floor_command": FLOOR,
             "wheel_build_s": build_s, "first_s": first, "second_s": second, "floor_s": floor,
             "compiling_s": compiling, "first_median_s": med["first"], "second_median_s": med["second"],
             "floor_median_s": med["floor"], "compiling_median_s": med["compiling"],

@@ -60,16 +60,12 @@ from __future__ import annotations
 
 import datetime
 import math
-import os
-import platform
 import sys
 import time
 from functools import lru_cache
 from pathlib import Path
 
-import numba
 import numpy as np
-import scipy
 import scipy.sparse as sparse
 from numba import njit
 from scipy.sparse.linalg import spsolve
@@ -77,7 +73,7 @@ from scipy.sparse.linalg import spsolve
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish  # noqa: E402
+from benchmarks.harness import Timer, machine, publish, time_all  # noqa: E402
 from lubrication import Annulus, Fluid, Motion, resistance, reynolds_forces  # noqa: E402
 from lubrication.closed_form import lubrication_forces  # noqa: E402
 from lubrication.geometry import Resistance  # noqa: E402
@@ -292,51 +288,6 @@ def _errors(exact: tuple, got: tuple) -> dict:
             "relative": dict(zip(Resistance.NAMES, rel))}
 
 
-class _Timer:
-    """A method to time: ``batch(calls)`` returns the wall seconds of each stage for ``calls`` solves.
-
-    Each sample also records the thread's CPU time for the batch, which the
-    other jobs on a shared machine do not inflate (they do inflate wall time).
-    """
-
-    def __init__(self, key, batch, stages=("total",)):
-        self.key, self.batch, self.stages = key, batch, stages
-        self.calls = 1
-        self.wall, self.cpu = [], []
-
-    def calibrate(self, batch_seconds: float) -> None:
-        self.batch(1)  # warm caches (and, for jitted code, compilation)
-        calls = 1
-        while True:
-            elapsed = float(np.sum(self.batch(calls)))
-            if elapsed >= batch_seconds or calls >= 1 << 24:
-                break
-            calls *= max(2, min(16, int(batch_seconds / max(elapsed, 1e-9))))
-        self.calls = calls
-
-    def sample(self) -> None:
-        start = time.thread_time()
-        self.wall.append(np.asarray(self.batch(self.calls)) / self.calls)
-        self.cpu.append((time.thread_time() - start) / self.calls)
-
-    def summary(self) -> dict:
-        """Medians per solve of each stage and of the total; the fastest total; median CPU time."""
-        stages = np.median(np.array(self.wall), axis=0)
-        totals = [float(np.sum(s)) for s in self.wall]
-        return {**dict(zip(self.stages, map(float, stages))), "total": float(np.median(totals)),
-                "fastest": min(totals), "cpu": float(np.median(self.cpu)), "calls_per_sample": self.calls}
-
-
-def _time_all(timers, rounds, batch_seconds, rng):
-    """Median seconds per solve of every timer, sampled round-robin in shuffled order."""
-    for timer in timers:
-        timer.calibrate(batch_seconds)
-    for _ in range(rounds):
-        for i in rng.permutation(len(timers)):
-            timers[i].sample()
-    return {timer.key: timer.summary() for timer in timers}
-
-
 def _jit_batch(kappa, omk, kappa_g, omk_g, n, m):
     """Kernel calls from the numba loop, on the grid that :mod:`lubrication.reynolds` would build."""
     rule, _ = psi_rule(n, m)
@@ -430,31 +381,6 @@ def _equal_accuracy(records, omks, targets, measure):
     return table
 
 
-def _machine() -> dict:
-    cpu = platform.processor()
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
-    except OSError:
-        pass
-    return {"cpu": cpu, "cores": os.cpu_count(), "platform": platform.platform(),
-            "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
-            "numba": numba.__version__}
-
-
-def speed_gauge_ms(loops: int = 1_000_000) -> float:
-    """Thread CPU time (ms) of a fixed pure-Python loop: how fast this machine runs at the moment.
-
-    The same code on the same machine takes 1.0-1.6 times its fastest time from minute to minute;
-    a benchmark that times it beside its own measurements says in which phase they were taken.
-    """
-    start = time.thread_time()
-    total = 0
-    for i in range(loops):
-        total += i * i
-    return 1e3 * (time.thread_time() - start)
-
-
 def run(one_minus_kappas=ONE_MINUS_KAPPAS, sommerfeld_cells=SOMMERFELD_CELLS, uniform_cells=UNIFORM_CELLS,
         sparse_cells=SPARSE_CELLS, conventional_cells=CONVENTIONAL_CELLS, targets=TARGETS,
         rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed=0) -> dict:
@@ -504,8 +430,8 @@ def run(one_minus_kappas=ONE_MINUS_KAPPAS, sommerfeld_cells=SOMMERFELD_CELLS, un
                     key = (omk, grid, m, n)
                     got = resistance(annulus, FLUID, "reynolds", n=n, grid=grid, points_per_cell=m).as_tuple()
                     kernel.append({**base, "grid": grid, "points_per_cell": m, "n": n, **_errors(exact, got)})
-                    timers.append(_Timer(("jit",) + key, _jit_batch(kappa, omk, kappa_g, omk_g, n, m)))
-                    timers.append(_Timer(("python",) + key, _python_batch(annulus, n, grid, m)))
+                    timers.append(Timer(("jit",) + key, _jit_batch(kappa, omk, kappa_g, omk_g, n, m)))
+                    timers.append(Timer(("python",) + key, _python_batch(annulus, n, grid, m)))
                     if n not in sparse_cells:
                         continue
                     args = (n, m, kappa, omk, kappa_g, omk_g)
@@ -515,17 +441,17 @@ def run(one_minus_kappas=ONE_MINUS_KAPPAS, sommerfeld_cells=SOMMERFELD_CELLS, un
                         f"sparse same-FV solve differs from the kernel by {agreement:.2e} at {key}")
                     sparse_fv.append({**base, "grid": grid, "points_per_cell": m, "n": n,
                                       "agreement_with_kernel": agreement, **_errors(exact, alt)})
-                    timers.append(_Timer(("sparse_fv",) + key, _staged_batch(
+                    timers.append(Timer(("sparse_fv",) + key, _staged_batch(
                         lambda *motion, args=args: sparse_fv_assemble(*args, *motion), sparse_fv_forces_from),
                         STAGES))
         for n in conventional_cells:
             got = _coefficients(lambda *motion, n=n: conventional_forces(n, kappa, omk, *motion))
             conventional.append({**base, "n": n, **_errors(exact, got)})
-            timers.append(_Timer(("conventional", omk, n), _staged_batch(
+            timers.append(Timer(("conventional", omk, n), _staged_batch(
                 lambda *motion, n=n, kappa=kappa, omk=omk: conventional_assemble(n, kappa, omk, *motion),
                 conventional_forces_from), STAGES))
-    timers.append(_Timer(("closed_form",), _closed_form_batch(one_minus_kappas)))
-    seconds = _time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
+    timers.append(Timer(("closed_form",), _closed_form_batch(one_minus_kappas)))
+    seconds = time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
 
     for row in kernel:
         key = (row["one_minus_kappa"], row["grid"], row["points_per_cell"], row["n"])
@@ -539,7 +465,7 @@ def run(one_minus_kappas=ONE_MINUS_KAPPAS, sommerfeld_cells=SOMMERFELD_CELLS, un
     records = {"kernel": kernel, "sparse_fv": sparse_fv, "conventional": conventional}
     closed_form = _timing("", seconds[("closed_form",)])
     return {
-        "machine": _machine(),
+        "machine": machine(),
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "settings": {"a": A, "b": B, "length": LENGTH, "mu": MU, "rounds": rounds,
                      "batch_seconds": batch_seconds, "agreement_tolerance": AGREEMENT},

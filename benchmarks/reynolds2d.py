@@ -54,8 +54,7 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine, _time_all, _Timer
+from benchmarks.harness import Timer, machine, publish, time_all
 from lubrication import (
     Annulus,
     Fluid,
@@ -70,8 +69,8 @@ from lubrication.reynolds2d import (
     general_solve,
     general_system,
     line_data,
-    solver_setup,
     reynolds2d_forces,
+    solver_setup,
 )
 
 A, B, LENGTH = 0.008, 0.01125, 0.1035  # the paper's apparatus (Table 2), m
@@ -216,21 +215,21 @@ def run(gaps=GAPS, sizes=SIZES, rounds=ROUNDS, batch_seconds=BATCH_SECONDS, seed
                 kinds = ("modal jit", "python") + (("sparse LU",) if (n, n_axial) in SPARSE_SIZES else ())
                 for kind in kinds:
                     stages = STAGES if kind == "sparse LU" else ("total",)
-                    timers.append(_Timer((omk, name, n, n_axial, kind), _batch(kind, annulus, motion, n, n_axial),
+                    timers.append(Timer((omk, name, n, n_axial, kind), _batch(kind, annulus, motion, n, n_axial),
                                          stages))
                 if (n, n_axial) in SPARSE_SIZES:
                     modal = np.array(_modal_forces(annulus, motion, n, n_axial))
                     sparse = np.array(_sparse_forces(annulus, motion, n, n_axial))
                     agreement.append(float(np.max(np.abs(sparse - modal)) / np.max(np.abs(modal))))
     start = time.perf_counter()
-    times = _time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
+    times = time_all(timers, rounds, batch_seconds, np.random.default_rng(seed))
     timing_seconds = time.perf_counter() - start
     records = [{"one_minus_kappa": k, "motion": name, "n": n, "n_axial": nz, "method": kind,
                 **times[(k, name, n, nz, kind)]} for (k, name, n, nz, kind) in times]
     accuracy = {f"{omk}": {name: _accuracy(omk, motion, 0 if name == "squeeze" else 1)
                            for name, motion in MOTIONS.items()} for omk in gaps}
     return {"date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
-            "machine": _machine(), "timing_seconds": timing_seconds,
+            "machine": machine(), "timing_seconds": timing_seconds,
             "case": {"a_m": A, "b_m": B, "length_m": LENGTH, "one_minus_kappa": list(gaps), "profile": "thin",
                      "ends": "open", "points_per_cell": 2, "rounds": rounds, "batch_seconds": batch_seconds,
                      "reference": list(REFERENCE)},

@@ -60,8 +60,7 @@ from numba import njit
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import machine, publish, repeat
 from benchmarks.stokes_exact import exact_table, table_forces
 from lubrication.stokes import (
     Discretisation,
@@ -167,15 +166,11 @@ def _lookup(calls=LOOKUP_CALLS, rounds=LOOKUP_ROUNDS) -> dict:
     prep = time.perf_counter() - start
     source = "exact ratios at Chebyshev-Lobatto nodes in zeta"
     kappas = np.linspace(0.0, 0.999, 97)
-    _lookup_loop(zn, nr, kappas, 10)  # compile
-    times = []
-    for _ in range(rounds):
-        t0 = time.perf_counter()
-        _lookup_loop(zn, nr, kappas, calls)
-        times.append((time.perf_counter() - t0) / calls)
+    timed = repeat(lambda: _lookup_loop(zn, nr, kappas, calls), rounds,
+                   warm_up=lambda: _lookup_loop(zn, nr, kappas, 10))  # the warm-up compiles
     return {"table": source, "n_nodes": int(zn.size), "table_seconds": prep, "calls": calls,
-            "rounds": rounds, "seconds_per_call": float(np.median(times)),
-            "seconds_per_call_min": float(min(times))}
+            "rounds": rounds, "seconds_per_call": timed.median / calls,
+            "seconds_per_call_min": timed.fastest / calls}
 
 
 def run(deltas=DELTAS, kappas=KAPPAS, scales=SCALES, max_mesh_seconds=MAX_MESH_SECONDS) -> dict:
@@ -207,7 +202,7 @@ def run(deltas=DELTAS, kappas=KAPPAS, scales=SCALES, max_mesh_seconds=MAX_MESH_S
                   file=sys.stderr)
     lookup = _lookup()
     results = {
-        "machine": _machine(),
+        "machine": machine(),
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "settings": {"deltas": list(deltas), "kappas": list(kappas), "scales": list(scales),
                      "clustering": CLUSTERING, "a": 1.0, "mu": 1.0,

@@ -44,8 +44,7 @@ import numpy as np
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import machine, publish, repeat
 from lubrication.closed_form import (
     closed_form_forces,
     closed_form_resistance,
@@ -162,13 +161,9 @@ def _loop_table(zeta_nodes, node_ratios, kappas, omks, motions, calls):
 
 
 def _median_per_call(fn, calls, rounds):
-    fn(10)  # compile and warm up
-    times = []
-    for _ in range(rounds):
-        t0 = time.perf_counter()
-        fn(calls)
-        times.append((time.perf_counter() - t0) / calls)
-    return float(np.median(times)), float(min(times))
+    """Median and fastest seconds per call of ``fn(calls)`` over ``rounds``, after ``fn(10)`` compiles it."""
+    timed = repeat(lambda: fn(calls), rounds, warm_up=lambda: fn(10))
+    return timed.median / calls, timed.fastest / calls
 
 
 def _python_per_call(fn, calls, rounds):
@@ -265,7 +260,7 @@ def run(calls=CALLS, rounds=ROUNDS, deltas=DELTAS) -> dict:
         build[d] = time.perf_counter() - t0
     results = {
         "date": datetime.date.today().isoformat(),
-        "machine": _machine(),
+        "machine": machine(),
         "timing": _timing(tables[APPARATUS_GAP], calls, rounds),
         "table": {"nodes": TABLE_NODES, "kappa_max": TABLE_KAPPA_MAX,
                   "build_seconds": {str(d): build[d] for d in deltas}},

@@ -32,7 +32,7 @@ batch's rows must equal the per-point rows (asserted: regimes, steps, numbers);
 CyRK's trajectories are classified like the others, and their agreement with
 the batch's regimes is reported. A fixed pure-Python loop is timed before each
 repeat and around each call of the whole sample
-(:func:`benchmarks.reynolds.speed_gauge_ms`): the report says how fast the
+(:func:`benchmarks.harness.speed_gauge_ms`): the report says how fast the
 machine ran while it measured.
 
 (b) A map end to end: ``run_sweep`` on a local cluster of 2 single-threaded
@@ -70,8 +70,7 @@ import numpy as np
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine, speed_gauge_ms
+from benchmarks.harness import machine, publish, speed_gauge_ms
 from dynamics.app.sweeps import batch, run
 from dynamics.app.sweeps.compiled import integrate_points
 from dynamics.app.sweeps.plot import save_regime_map
@@ -370,7 +369,7 @@ def to_markdown(results: dict) -> str:
             + ("met" if whole["point_median_ms"] <= GOALS["trajectory_cpu_ms"] else "not met")
             + f" ({whole['point_median_ms']:.2f} ms). The old scipy-based path took 56 ms.", "",
             ("This machine's speed moves from minute to minute: a fixed pure-Python loop "
-             "(`benchmarks.reynolds.speed_gauge_ms`), timed before each repeat and before and after each call of the "
+             "(`benchmarks.harness.speed_gauge_ms`), timed before each repeat and before and after each call of the "
              f"whole sample, took {min(a['speed_gauge_ms']):.0f}-{max(a['speed_gauge_ms']):.0f} ms during (a)."), ""]
     b = results["map"]
     out += [f"## (b) A map of {b['batch']['points']:,} points on {WORKERS} workers, end to end", "",
@@ -415,7 +414,7 @@ def main(argv=None) -> None:
     parser.add_argument("--sample", type=int, default=SAMPLE, help=f"points of (a) (default {SAMPLE})")
     args = parser.parse_args(argv)
     started = time.perf_counter()
-    results = {"machine": _machine(), "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+    results = {"machine": machine(), "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
                "goals": GOALS}
     results["trajectories"] = run_trajectories(args.sample)
     results["map"] = run_map(args.points, args.output, args.replace, args.per_point)

@@ -54,8 +54,7 @@ from scipy.integrate import solve_ivp
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
-from benchmarks.reynolds import _machine
+from benchmarks.harness import interleave, machine, publish
 from dynamics.equations import full, reduced
 from dynamics.equations.limits import GAP_FLOOR
 from dynamics.scenes import load_scene
@@ -246,14 +245,14 @@ def run(rtols=RTOLS, repeats: int = REPEATS, models=MODELS, seed: int = 0) -> di
         references[m] = p.end_state(p.solve("engine", REFERENCE_RTOL)["y"])
         reference_check[m] = _error(p.end_state(p.solve("lsoda-jit", REFERENCE_RTOL)["y"]), references[m])
     configs = [(m, s, r) for m in models for s in SOLVERS for r in rtols]
-    samples = {c: [] for c in configs}
-    outcome = {}
-    for _ in range(repeats):
-        for i in rng.permutation(len(configs)):
-            m, s, r = configs[i]
-            wall, cpu, result = _timed(problems[m].solve, s, r)
-            samples[configs[i]].append((wall, cpu))
-            outcome[configs[i]] = result
+    outcome = {}  # each configuration's last result
+
+    def timed(config):
+        m, s, r = config
+        wall, cpu, outcome[config] = _timed(problems[m].solve, s, r)
+        return wall, cpu
+
+    samples = interleave(configs, repeats, rng, timed)
     rows = {m: [] for m in models}
     for (m, s, r), times in samples.items():
         result, p = outcome[m, s, r], problems[m]
@@ -281,7 +280,7 @@ def run(rtols=RTOLS, repeats: int = REPEATS, models=MODELS, seed: int = 0) -> di
                                                       rtol=settings.rtol, limits=settings.limits))
         scene_runs.append(wall)
     return {
-        "machine": _machine(),
+        "machine": machine(),
         "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "scene": {"apparatus": "steel", "nu": ap.nu, "alpha_deg": math.degrees(ap.alpha), "kappa0": initial.kappa,
                   "phi0": initial.phi, "t_end": settings.t_end, "tau": ap.tau, "delta_over_a": ap.delta_over_a},

@@ -284,8 +284,9 @@ def _check_start(initial: Initial, limits: Limits, contact, equations: str, meth
     and the reason.
 
     LSODA, a cross-check, stalls in the full equations released near contact: from the default scene's
-    angle at 1 - kappa0 = 1e-4 and 1e-5 it took 200,000 steps for 3 s and 1.8 s (10 s from 1e-2 in 0.2 s),
-    and from 1e-6 it failed outright, while the compiled Radau IIA and scipy's BDF and Radau ran.
+    angle at 1 - kappa0 = 1e-4 and 1e-5 it took 200,000 steps to reach t = 3 s and 1.8 s (from 1e-2 it ran the
+    10 s without trouble), and from 1e-6 it failed outright, while the compiled Radau IIA and scipy's BDF and
+    Radau ran.
     """
     if method == "LSODA" and equations == "full" and contact is None and initial.gap < LSODA_NEAR_CONTACT:
         msg = (f"method = 'LSODA' cannot follow the full equations released within {LSODA_NEAR_CONTACT:g} of "

@@ -3,7 +3,7 @@
 One steady Navier-Stokes solve per node (:func:`lubrication.navier_stokes.build_error_table`, finite
 elements, Newton), then the table as a Python module of numbers. Rerun after a change to the steady
 Navier-Stokes solver, to the table's columns (:data:`lubrication.inertia.TABLE_COLUMNS`) or to its nodes
-below; then check ``tests/test_navier_stokes.py`` and ``python -m validation.inertia`` (which compares
+below; then check ``tests/test_navier_stokes.py`` and ``python -m validation.reports.inertia`` (which compares
 the interpolated table with fresh solves off the nodes).
 
     python generators/inertia_table.py

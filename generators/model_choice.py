@@ -26,7 +26,7 @@ CHOICE_FILE = ROOT / "dynamics" / "data" / "model_choice.json"
 
 def main(argv=None) -> Path:
     from benchmarks.accuracy import model_choice, rederive, run
-    from benchmarks.publish import RESULTS
+    from benchmarks.harness import RESULTS
     from numerics.files import write_text
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

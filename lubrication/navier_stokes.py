@@ -203,8 +203,8 @@ class _NavierStokesSystem:
         from scipy.sparse.linalg import splu
 
         # The Jacobian has the Stokes sparsity pattern: the symmetric-mode
-        # ordering that suits the Stokes matrix factorises it 5-8 times faster
-        # than column ordering with partial pivoting (measured); Newton
+        # ordering that suits the Stokes matrix factorises it faster than
+        # column ordering with partial pivoting (measured); Newton
         # absorbs what little accuracy diagonal pivoting may lose.
         try:
             return splu(jac, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,

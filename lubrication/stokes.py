@@ -90,8 +90,8 @@ def default_mesh(delta_over_a: float) -> tuple[int, int]:
     """Default ``(n_around, n_across)`` for a gap ``delta_over_a``.
 
     Chosen from measured convergence: relative error of each resistance
-    function about 1e-6 or less for kappa <= 0.9 and delta/a in [0.01, 0.41],
-    in well under two seconds. Across the gap the error falls like
+    function about 1e-6 or less for kappa <= 0.9 and delta/a in [0.01, 0.41]
+    at the lowest cost (``benchmarks/results/stokes.md``). Across the gap the error falls like
     n_across^-4 with a constant that grows with delta/a; 32 cells around per
     cell across balances the two directions. Around, the error of the
     quadratic circles relative to the gap grows like a/delta, hence

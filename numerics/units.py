@@ -1,12 +1,12 @@
 """Quantities with units in scenes, read by pint; the registry is built on first use.
 
-Importing pint and building its registry takes about a second, which a run given
-only plain SI numbers should not pay, so both happen when the first string with
-units is read; pint keeps its parsed definitions in the project's cache folder
-(:func:`numerics.files.cache_folder`), which cuts the registry's build from
-0.45 s to 0.1 s after the first time.
+Importing pint and building its registry is a cost that a run given only plain
+SI numbers should not pay, so both happen when the first string with units is
+read; pint keeps its parsed definitions in the project's cache folder
+(:func:`numerics.files.cache_folder`), which shortens the registry's build after
+the first time.
 
-Even then pint's import costs 0.15-0.2 s, a tenth of a warm ``snail run``. So
+Even then pint's import is a large part of a warm ``snail run``. So
 every quantity read is remembered in that folder (``units.json``), under
 pint's version: a scene whose strings were all read before (the default
 scene, after its first run) converts them without importing pint.

@@ -31,3 +31,21 @@ def ctrl_c():
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     yield
     signal.signal(signal.SIGINT, previous)
+
+
+@pytest.fixture(scope="session")
+def quick_group(tmp_path_factory):
+    """``quick_group(name)``: the quick form of the group of ``snail validate`` that ``validation.reports.<name>``
+    runs, as (folder, records, figure names, paragraph); run once a session, into a folder of its own."""
+    from validation import suite
+
+    modules = {module.__name__.rpartition(".")[2]: module for module in suite.GROUPS.values()}
+    done = {}
+
+    def run(name: str):
+        if name not in done:
+            outdir = tmp_path_factory.mktemp(name)
+            done[name] = (outdir, *modules[name].run(outdir, quick=True))
+        return done[name]
+
+    return run

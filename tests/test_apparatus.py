@@ -10,6 +10,8 @@ from dynamics.apparatus import ALUMINIUM, PRESETS, STEEL, Apparatus, preset
 from dynamics.equations.reduced import ReducedParams
 from dynamics.equations.special import decay_exponent, runaway_spin_rate
 
+from apparatus import A, B, L
+
 GRAM = 1e-3
 
 # Table 2 as printed (grams, and the dimensionless mu_ and q).
@@ -27,7 +29,7 @@ def ureg():
 
 
 def _kwargs(**overrides):
-    base = dict(a=0.008, b=0.01125, length=0.1035, m_a=0.158, m_b=0.047, nu=2e-4, rho=960.0,
+    base = dict(a=A, b=B, length=L, m_a=0.158, m_b=0.047, nu=2e-4, rho=960.0,
                 alpha=0.04)
     base.update(overrides)
     return base

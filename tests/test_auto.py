@@ -25,12 +25,13 @@ from dynamics.app.auto import (
 )
 from dynamics.app.cli import main
 from dynamics.scenes import parse_scene
-from lubrication.geometry import Annulus, Fluid, Resistance
+from lubrication.geometry import Annulus, Resistance
 from lubrication.registry import resistance
+
+from apparatus import A, L, OIL
 
 THIN, APPARATUS = 0.01, 0.40625  # a = 0.8 cm, b = 1.125 cm
 SEPARATING = 5e-2
-FLUID = Fluid(nu=2.0e-4, rho=960.0)
 
 
 @pytest.fixture(autouse=True)
@@ -46,8 +47,8 @@ def row_error(got: Resistance, truth: Resistance) -> float:
 
 
 def stokes_truth(delta: float, kappa: float, **mesh) -> tuple[Annulus, Resistance]:
-    annulus = Annulus.from_kappa(0.008, 0.008 * (1.0 + delta), kappa, length=0.1035)
-    return annulus, resistance(annulus, FLUID, "stokes", **mesh)
+    annulus = Annulus.from_kappa(A, A * (1.0 + delta), kappa, length=L)
+    return annulus, resistance(annulus, OIL, "stokes", **mesh)
 
 
 # -- choices from the stored study ------------------------------------------------------------
@@ -169,7 +170,7 @@ def test_chosen_closed_forms_meet_the_tolerance_against_stokes(kappa):
     choice = choose_forces(SEPARATING, THIN, 0.99)
     assert choice.model == "closed-form"
     annulus, truth = stokes_truth(THIN, kappa, n_around=128, n_across=2)
-    assert row_error(resistance(annulus, FLUID, "closed-form"), truth) <= SEPARATING
+    assert row_error(resistance(annulus, OIL, "closed-form"), truth) <= SEPARATING
 
 
 @pytest.mark.slow
@@ -186,7 +187,7 @@ def test_chosen_stokes_forces_meet_the_tolerance_against_a_finite_element_solve(
     for kappa in (0.42, 0.97):
         annulus, truth = stokes_truth(delta, kappa, n_around=round(1.5 * n_around),
                                       n_across=round(1.5 * n_across))
-        unit = [model.forces(annulus, Motion(**{k: 1.0}), FLUID) for k in ("eps_dot", "omega_a", "omega_b")]
+        unit = [model.forces(annulus, Motion(**{k: 1.0}), OIL) for k in ("eps_dot", "omega_a", "omega_b")]
         got = Resistance(unit[0].f_eps, unit[1].f_chi, unit[1].T_a, unit[2].f_chi, unit[2].T_a)
         assert row_error(got, truth) <= tolerance
 
@@ -299,10 +300,3 @@ def test_choice_is_plain_data():
     assert json.loads(json.dumps(Choice("full", reason="r").as_dict()))["model"] == "full"
 
 
-@pytest.mark.slow
-def test_validation_group_passes_in_its_quick_form(tmp_path):
-    from validation import model_choice_checks
-
-    checks, figures, paragraph = model_choice_checks.run(tmp_path, quick=True)
-    assert checks and all(c.passed for c in checks), [c.name for c in checks if not c.passed]
-    assert figures == [] and "closed-form" in paragraph

@@ -1,16 +1,6 @@
 """The cavitating-trajectory validation group in its quick form."""
 
 from validation import cavitation_trajectories
-from validation.checks import comparisons
-
-
-def test_quick_group_passes(tmp_path):
-    records, figures, text = cavitation_trajectories.run(tmp_path, quick=True)
-    checks = comparisons(records)
-    failed = [c.name for c in checks if not c.passed]
-    assert checks and not failed
-    assert figures == []
-    assert "| 2.4 | jfo, 3 Pa |" in text
 
 
 def test_run_summary_counts_cavity_switches():

@@ -8,7 +8,8 @@ import pytest
 
 from dynamics.app.cli import main
 
-GEOMETRY = ["--a", "0.008", "--b", "0.01125"]
+from apparatus import CLI_GEOMETRY
+
 
 
 def run(capsys, *args):
@@ -18,7 +19,7 @@ def run(capsys, *args):
 
 
 def test_forces_json_has_the_contract_keys(capsys):
-    code, out, _ = run(capsys, "forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9",
+    code, out, _ = run(capsys, "forces", "--model", "reynolds", *CLI_GEOMETRY, "--kappa", "0.9",
                        "--omega-a", "1", "--json")
     assert code == 0
     data = json.loads(out)
@@ -28,7 +29,7 @@ def test_forces_json_has_the_contract_keys(capsys):
 
 
 def test_all_models_with_relative_differences(capsys):
-    code, out, _ = run(capsys, "forces", "--model=all", *GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6",
+    code, out, _ = run(capsys, "forces", "--model=all", *CLI_GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6",
                        "--chi-dot", "-2.5E-1", "--omega-b", "-.5", "--json")
     assert code == 0
     data = json.loads(out)
@@ -43,7 +44,7 @@ def test_all_models_with_relative_differences(capsys):
 
 
 def test_negative_numbers_in_scientific_notation_are_values(capsys):
-    code, out, _ = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6", "--json")
+    code, out, _ = run(capsys, "forces", *CLI_GEOMETRY, "--kappa", "0.5", "--eps-dot", "-1e-6", "--json")
     assert code == 0 and json.loads(out)["f_eps"] > 0
 
 
@@ -51,15 +52,15 @@ def test_negative_numbers_in_scientific_notation_are_values(capsys):
     ("args", "words"),
     [
         (["--a", "0.02", "--b", "0.01", "--kappa", "0.5"], "b must be greater than a"),
-        ([*GEOMETRY, "--kappa", "1"], "kappa must be in [0, 1)"),
-        ([*GEOMETRY, "--kappa", "0.5", "--nu", "-1e-4"], "nu must be in (0, inf)"),
-        ([*GEOMETRY, "--kappa", "0.5", "--rho", "0"], "rho must be in (0, inf)"),
-        ([*GEOMETRY, "--kappa", "nan"], "not a finite number: 'nan'"),
-        ([*GEOMETRY, "--kappa", "0.5", "--p-ref", "nan"], "not a finite number: 'nan'"),
-        ([*GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n must be an integer in [8, 1048576], got 3"),
-        ([*GEOMETRY, "--kappa", "abc"], "not a finite number"),
-        ([*GEOMETRY, "--kappa", "0.5", "--model", "magic"], "invalid choice"),
-        ([*GEOMETRY], "required: --kappa"),
+        ([*CLI_GEOMETRY, "--kappa", "1"], "kappa must be in [0, 1)"),
+        ([*CLI_GEOMETRY, "--kappa", "0.5", "--nu", "-1e-4"], "nu must be in (0, inf)"),
+        ([*CLI_GEOMETRY, "--kappa", "0.5", "--rho", "0"], "rho must be in (0, inf)"),
+        ([*CLI_GEOMETRY, "--kappa", "nan"], "not a finite number: 'nan'"),
+        ([*CLI_GEOMETRY, "--kappa", "0.5", "--p-ref", "nan"], "not a finite number: 'nan'"),
+        ([*CLI_GEOMETRY, "--kappa", "0.5", "--model", "reynolds", "--n", "3"], "n must be an integer in [8, 1048576], got 3"),
+        ([*CLI_GEOMETRY, "--kappa", "abc"], "not a finite number"),
+        ([*CLI_GEOMETRY, "--kappa", "0.5", "--model", "magic"], "invalid choice"),
+        ([*CLI_GEOMETRY], "required: --kappa"),
     ],
 )
 def test_bad_input_exits_2_with_a_message_and_no_traceback(capsys, args, words):
@@ -127,7 +128,7 @@ def test_validate_writes_the_report_and_fails_on_a_failed_comparison(tmp_path, c
 def test_stokes_flow_field_is_written_for_paraview(tmp_path, capsys):
     meshio = pytest.importorskip("meshio")
     pytest.importorskip("skfem")
-    code, out, _ = run(capsys, "forces", "--model", "stokes", *GEOMETRY, "--kappa", "0.5", "--omega-a", "1",
+    code, out, _ = run(capsys, "forces", "--model", "stokes", *CLI_GEOMETRY, "--kappa", "0.5", "--omega-a", "1",
                        "--n-around", "64", "--n-across", "4", "--flow", str(tmp_path), "--json")
     assert code == 0 and json.loads(out)["model"] == "stokes"
     field = meshio.read(tmp_path / "flow.vtu")
@@ -136,20 +137,20 @@ def test_stokes_flow_field_is_written_for_paraview(tmp_path, capsys):
 
 
 def test_flow_without_stokes_is_refused(tmp_path, capsys):
-    code, _, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--flow", str(tmp_path))
+    code, _, err = run(capsys, "forces", *CLI_GEOMETRY, "--kappa", "0.5", "--flow", str(tmp_path))
     assert code == 2 and "--flow draws the finite-element Stokes flow: it needs --model stokes" in err
 
 
 def test_stokes_without_the_fem_extra_says_how_to_install_it(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "skfem", None)  # as if scikit-fem were not installed
     # a geometry no other test solved, so that no cached factorisation stands in for the import
-    code, out, err = run(capsys, "forces", "--model", "stokes", *GEOMETRY, "--kappa", "0.3711")
+    code, out, err = run(capsys, "forces", "--model", "stokes", *CLI_GEOMETRY, "--kappa", "0.3711")
     assert code == 2 and 'pip install "snail-cylinder[fem]"' in err and out == ""
 
 
 def test_forces_with_cavitation(capsys):
     """Below the cavitation pressure the film ruptures: the JFO forces differ from the full film's."""
-    args = ["forces", "--model", "reynolds", *GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256", "--json"]
+    args = ["forces", "--model", "reynolds", *CLI_GEOMETRY, "--kappa", "0.9", "--omega-a", "1", "--n", "256", "--json"]
     code, out, _ = run(capsys, *args, "--cavitation", "jfo", "--p-ref", "101325", "--p-cav", "101320")
     assert code == 0
     jfo = json.loads(out)
@@ -180,14 +181,14 @@ def test_all_models_report_each_component_against_its_own_size():
     (["--model", "reynolds", "--p-ref", "2e5"], "--p-ref: p_ref goes with cavitation, which is 'none' here"),
 ])
 def test_cavitation_options_are_checked(capsys, args, words):
-    code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", *args)
+    code, out, err = run(capsys, "forces", *CLI_GEOMETRY, "--kappa", "0.5", *args)
     assert code == 2 and words in err and out == ""
 
 
 @pytest.mark.parametrize("cavitation", ["half-sommerfeld", "swift-stieber"])
 def test_the_textbook_cut_at_the_reference_pressure_is_allowed(capsys, cavitation):
     """p_cav = p_ref, no margin: the classical half-Sommerfeld and Swift-Stieber films (lubrication.cavitation)."""
-    code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.5", "--omega-a", "1", "--model", "reynolds",
+    code, out, err = run(capsys, "forces", *CLI_GEOMETRY, "--kappa", "0.5", "--omega-a", "1", "--model", "reynolds",
                          "--cavitation", cavitation, "--p-cav", "101325", "--p-ref", "101325", "--json")
     assert code == 0, err
     assert json.loads(out)["p_cav"] == json.loads(out)["p_ref"] == 101325

@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication import Annulus, Fluid, Motion, closed_form_forces, lubrication_forces
+from lubrication import Annulus, Motion, closed_form_forces, lubrication_forces
 from lubrication.geometry import MIN_ONE_MINUS_KAPPA
 
-A, B, L = 0.008, 0.01125, 0.1035
-FLUID = Fluid(nu=2e-4, rho=960.0)
+from apparatus import A, B, L, OIL
+
 
 
 def oint(f):
@@ -26,7 +26,7 @@ def oint(f):
 
 
 def quadrature_forces(kappa, motion):
-    delta, mu = B - A, FLUID.mu
+    delta, mu = B - A, OIL.mu
 
     def h(t):
         return delta * (1.0 - kappa * math.cos(t))
@@ -59,7 +59,7 @@ MOTIONS = {
 @pytest.mark.parametrize("motion", MOTIONS.values(), ids=MOTIONS.keys())
 def test_closed_forms_match_quadrature_of_appendix_b(kappa, motion):
     annulus = Annulus.from_kappa(A, B, kappa, L)
-    got = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
+    got = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
     ref = quadrature_forces(kappa, motion)
     # quad's relative tolerance 1e-12, amplified by the cancellations in f_chi and T_a
     scale = np.array([np.hypot(*ref[:2]), np.hypot(*ref[:2]), abs(ref[2])])
@@ -80,29 +80,29 @@ def test_torque_form_2_7_is_the_one_from_b15():
     kappa = 0.6
     annulus = Annulus.from_kappa(A, B, kappa, L)
     zeta = math.sqrt(1 - kappa**2)
-    c = 12.0 * FLUID.nu * A * (math.pi * A**2 * L * FLUID.rho) / (B - A)
+    c = 12.0 * OIL.nu * A * (math.pi * A**2 * L * OIL.rho) / (B - A)
     motion = Motion(omega_a=0.8, omega_b=-0.3, chi_dot=0.1)
     expected = c * ((1 - kappa**2) * motion.w_b - (1 + 2 * kappa**2) * motion.w_a) / (3 * (2 + kappa**2) * zeta)
-    assert closed_form_forces(annulus, motion, FLUID).T_a == pytest.approx(expected, rel=1e-14)
+    assert closed_form_forces(annulus, motion, OIL).T_a == pytest.approx(expected, rel=1e-14)
 
 
 def test_signs_follow_the_physics():
     """Squeezing the gap shut is resisted; a spinning inner cylinder is pushed across the line of centres."""
     annulus = Annulus.from_kappa(A, B, 0.5, L)
-    closing = closed_form_forces(annulus, Motion(eps_dot=1e-4), FLUID)
-    spinning = closed_form_forces(annulus, Motion(omega_a=1.0), FLUID)
+    closing = closed_form_forces(annulus, Motion(eps_dot=1e-4), OIL)
+    spinning = closed_form_forces(annulus, Motion(omega_a=1.0), OIL)
     assert closing.f_eps < 0 and closing.f_chi == 0 and closing.T_a == 0
     assert spinning.f_chi > 0 and spinning.T_a < 0 and spinning.f_eps == 0
 
 
 def test_rigid_rotation_with_the_line_of_centres_gives_nothing():
     annulus = Annulus.from_kappa(A, B, 0.7, L)
-    f = closed_form_forces(annulus, Motion(chi_dot=2.0, omega_a=2.0, omega_b=2.0), FLUID)
+    f = closed_form_forces(annulus, Motion(chi_dot=2.0, omega_a=2.0, omega_b=2.0), OIL)
     assert f.as_tuple() == (0.0, 0.0, 0.0)
 
 
 def test_finite_up_to_the_smallest_allowed_gap_and_regular_at_the_centre():
     """1 - kappa down to the floor the annulus allows keeps its precision; kappa = 0 is regular."""
-    f_contact = lubrication_forces(A, B - A, FLUID.mu, L, 1.0, MIN_ONE_MINUS_KAPPA, 1.0, 1.0, 1.0)
+    f_contact = lubrication_forces(A, B - A, OIL.mu, L, 1.0, MIN_ONE_MINUS_KAPPA, 1.0, 1.0, 1.0)
     assert all(math.isfinite(x) and x != 0.0 for x in f_contact)
-    assert lubrication_forces(A, B - A, FLUID.mu, L, 0.0, 1.0, 1.0, 1.0, 1.0)[1] == 0.0
+    assert lubrication_forces(A, B - A, OIL.mu, L, 0.0, 1.0, 1.0, 1.0, 1.0)[1] == 0.0

@@ -1,4 +1,4 @@
-"""The delta/a correction study: a quick run writes its files and its checks pass."""
+"""The delta/a correction study: a quick run writes its files (its checks: tests/test_validation_groups.py)."""
 
 import csv
 import json
@@ -9,27 +9,10 @@ import pytest
 
 from lubrication.geometry import RESISTANCE_NAMES as RATIO_NAMES
 from validation import cli, corrections
-from validation.checks import comparisons
 
 
-@pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    outdir = tmp_path_factory.mktemp("corrections")
-    checks, figures, text = corrections.run(outdir, quick=True)
-    return outdir, checks, figures, text
-
-
-def test_quick_run_checks_pass(quick_run):
-    _, checks, _, _ = quick_run
-    failed = [c.name for c in comparisons(checks) if not c.passed]
-    assert not failed
-    names = " ".join(c.name for c in checks)
-    assert "Stokes: slope" in names and "Reynolds on the exact gap: slope" in names
-    assert "share of the Stokes" in names
-
-
-def test_quick_run_writes_csv_json_and_figure(quick_run):
-    outdir, checks, figures, text = quick_run
+def test_quick_run_writes_csv_json_and_figure(quick_group):
+    outdir, checks, figures, text = quick_group("corrections")
     assert figures == ["corrections.png"]
     assert (outdir / "corrections.png").stat().st_size > 10_000
     rows = list(csv.DictReader((outdir / "corrections.csv").open()))

@@ -25,15 +25,14 @@ from dynamics.apparatus import preset
 from dynamics.equations.limits import Limits
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
-from lubrication import Annulus, Fluid, Motion
+from lubrication import Annulus, Motion
 from lubrication import finite_length as fl
 from lubrication.registry import kernel_model
 from lubrication.reynolds2d import reynolds2d_forces
 
-A, B = 0.008, 0.01125
-FLUID = Fluid(nu=2e-4, rho=1000.0)  # the steel preset's, snail forces' default
+from apparatus import A, B, L, CLI_GEOMETRY, PRESET_FLUID
+
 NODES = 9
-GEOMETRY = ["--a", "0.008", "--b", "0.01125"]
 
 
 @pytest.fixture(scope="module")
@@ -72,8 +71,8 @@ def test_open_ends_are_length_times_coefficient_times_factor(table, model, node)
     open_ends, infinite = kernel_model(model, ends="open", length_over_a=length_over_a), kernel_model(model)
     assert open_ends.name.endswith("/open-ends")
     for name, motion, index in UNIT_MOTIONS:
-        got = open_ends.forces(annulus, motion, FLUID).as_tuple()[index]
-        want = infinite.forces(annulus, motion, FLUID).as_tuple()[index] * factors[name]
+        got = open_ends.forces(annulus, motion, PRESET_FLUID).as_tuple()[index]
+        want = infinite.forces(annulus, motion, PRESET_FLUID).as_tuple()[index] * factors[name]
         assert got == pytest.approx(want, rel=1e-9), name
 
 
@@ -83,8 +82,8 @@ def test_open_ends_are_linear_in_the_velocities(table):
     annulus = Annulus(a=A, b=B, length=length_over_a * A, one_minus_kappa=omk)
     model = kernel_model("stokes-exact", ends="open", length_over_a=length_over_a)
     combined = np.array(model.forces(annulus, Motion(eps_dot=-2e-5, chi_dot=0.3, omega_a=1.2, omega_b=-0.4),
-                                     FLUID).as_tuple())
-    parts = sum(np.array(model.forces(annulus, m, FLUID).as_tuple()) for m in
+                                     PRESET_FLUID).as_tuple())
+    parts = sum(np.array(model.forces(annulus, m, PRESET_FLUID).as_tuple()) for m in
                 (Motion(eps_dot=-2e-5), Motion(omega_a=0.9), Motion(omega_b=-0.7)))
     assert np.allclose(combined, parts, rtol=1e-12, atol=1e-15 * np.abs(parts).max())
 
@@ -128,7 +127,7 @@ def test_scene_refuses_open_ends_with_the_reynolds_solver(tmp_path, capsys):
 # ---------------------------------------------------------------- `snail forces --ends`
 
 def _forces(capsys, *args):
-    code, out, err = run(capsys, "forces", *GEOMETRY, "--kappa", "0.6", "--omega-a", "1.5", "--eps-dot", "-1e-5",
+    code, out, err = run(capsys, "forces", *CLI_GEOMETRY, "--kappa", "0.6", "--omega-a", "1.5", "--eps-dot", "-1e-5",
                          *args)
     return code, (json.loads(out) if code == 0 and "--json" in args else out), err
 
@@ -138,10 +137,10 @@ def test_forces_applies_open_ends_to_the_factor_models(table, capsys, model):
     make = functools.partial(kernel_model, model)
     code, data, _ = _forces(capsys, "--model", model, "--ends", "open", "--json")
     assert code == 0 and data["ends"] == "open"
-    annulus = Annulus.from_kappa(A, B, 0.6, 0.1035)
+    annulus = Annulus.from_kappa(A, B, 0.6, L)
     motion = Motion(eps_dot=-1e-5, omega_a=1.5)
-    want = make(ends="open", length_over_a=0.1035 / A).forces(annulus, motion, FLUID)
-    infinite = make().forces(annulus, motion, FLUID)
+    want = make(ends="open", length_over_a=L / A).forces(annulus, motion, PRESET_FLUID)
+    infinite = make().forces(annulus, motion, PRESET_FLUID)
     assert (data["f_eps"], data["f_chi"], data["T_a"]) == pytest.approx(want.as_tuple(), rel=1e-14)
     assert data["f_chi"] < 0.95 * infinite.f_chi  # the ends take 13 % of the rotation force at kappa = 0.6
 
@@ -154,10 +153,10 @@ def test_forces_open_ends_with_half_sommerfeld(capsys):
             "--p-cav", "0", "--json")
     code, data, _ = _forces(capsys, *args)
     assert code == 0 and data["p_ref"] == 5.0
-    annulus = Annulus.from_kappa(A, B, 0.6, 0.1035)
+    annulus = Annulus.from_kappa(A, B, 0.6, L)
     motion = Motion(eps_dot=-1e-5, omega_a=1.5)
-    want = reynolds2d_forces(annulus, motion, FLUID, cavitation="half-sommerfeld", p_end=5.0)  # its own grid
-    full = reynolds2d_forces(annulus, motion, FLUID)
+    want = reynolds2d_forces(annulus, motion, PRESET_FLUID, cavitation="half-sommerfeld", p_end=5.0)  # its own grid
+    full = reynolds2d_forces(annulus, motion, PRESET_FLUID)
     assert (data["f_eps"], data["f_chi"], data["T_a"]) == pytest.approx(want.as_tuple(), rel=1e-14)
     assert abs(data["f_eps"] / full.f_eps - 1.0) > 1.0  # f_eps even changes sign
 
@@ -165,7 +164,7 @@ def test_forces_open_ends_with_half_sommerfeld(capsys):
 def test_forces_n_axial_is_cells_along_the_whole_length(capsys):
     code, data, _ = _forces(capsys, "--model", "reynolds", "--ends", "open", "--n-axial", "16", "--json")
     assert code == 0 and data["n_axial"] == 16
-    want = reynolds2d_forces(Annulus.from_kappa(A, B, 0.6, 0.1035), Motion(eps_dot=-1e-5, omega_a=1.5), FLUID,
+    want = reynolds2d_forces(Annulus.from_kappa(A, B, 0.6, L), Motion(eps_dot=-1e-5, omega_a=1.5), PRESET_FLUID,
                              n_axial=16)
     assert data["f_chi"] == pytest.approx(want.f_chi, rel=1e-14)
     with pytest.raises(SystemExit):

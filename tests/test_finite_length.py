@@ -12,10 +12,11 @@ import math
 import numpy as np
 import pytest
 
-from lubrication import Annulus, Fluid, Motion, closed_form_forces
+from lubrication import Annulus, Motion, closed_form_forces
 from lubrication import finite_length as fl
 
-FLUID = Fluid(nu=2e-4, rho=960.0)
+from apparatus import A, B, OIL
+
 
 
 @pytest.mark.parametrize("kappa", [0.3, 0.9, 0.99])
@@ -49,13 +50,13 @@ def test_eccentric_gap_tends_to_the_thin_gap():
 def test_short_bearing_factors_are_the_closed_forms_ratio(kappa):
     """The factor formulas against the short-bearing forces divided by (2.5)-(2.7)."""
     length_over_a = 0.3
-    annulus = Annulus.from_kappa(0.008, 0.01125, kappa, length_over_a * 0.008)
+    annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
     factors = fl.short_bearing_factors(kappa, length_over_a)
     for name, motion, index in (("f_eps_per_eps_dot", Motion(eps_dot=1.0), 0),
                                 ("f_chi_per_w_a", Motion(omega_a=1.0), 1), ("t_a_per_w_a", Motion(omega_a=1.0), 2),
                                 ("f_chi_per_w_b", Motion(omega_b=1.0), 1), ("t_a_per_w_b", Motion(omega_b=1.0), 2)):
-        short = fl.short_bearing_forces(annulus, motion, FLUID).as_tuple()[index]
-        long_ = closed_form_forces(annulus, motion, FLUID).as_tuple()[index]
+        short = fl.short_bearing_forces(annulus, motion, OIL).as_tuple()[index]
+        long_ = closed_form_forces(annulus, motion, OIL).as_tuple()[index]
         if long_ == 0.0:
             continue
         assert factors[name] == pytest.approx(short / long_, rel=1e-12), name
@@ -64,11 +65,11 @@ def test_short_bearing_factors_are_the_closed_forms_ratio(kappa):
 @pytest.mark.parametrize("kappa", [0.3, 0.9])
 def test_short_bearing_torque_obeys_the_thin_gap_identity(kappa):
     """Ocvirk's torque: its Poiseuille part is -(eps/2) f_chi, its Couette part mu a^3 L (W_b - W_a) oint 1/h."""
-    annulus = Annulus.from_kappa(0.008, 0.01125, kappa, 0.3 * 0.008)
+    annulus = Annulus.from_kappa(A, B, kappa, 0.3 * A)
     motion = Motion(omega_a=1.3, omega_b=0.4)
-    f = fl.short_bearing_forces(annulus, motion, FLUID)
+    f = fl.short_bearing_forces(annulus, motion, OIL)
     zeta = math.sqrt(1 - kappa**2)
-    couette = FLUID.mu * 0.008**3 * annulus.length * (motion.w_b - motion.w_a) * 2 * math.pi / (annulus.delta * zeta)
+    couette = OIL.mu * A**3 * annulus.length * (motion.w_b - motion.w_a) * 2 * math.pi / (annulus.delta * zeta)
     assert f.T_a - couette == pytest.approx(-0.5 * annulus.eps * f.f_chi, rel=1e-13)
 
 

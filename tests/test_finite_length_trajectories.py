@@ -48,16 +48,3 @@ def test_locked_speed_is_the_full_models_fixed_point(ends, monkeypatch):
     assert flt.locked_speed(ap, model, contact.kappa_star) == pytest.approx(ap.b * fixed[2], rel=1e-9)
 
 
-@pytest.mark.slow
-def test_quick_group_passes(tmp_path):
-    """Steel, 200 cSt, 2.4 degrees: eight runs (about 10 s with the factor table built)."""
-    records, figures, text = flt.run(tmp_path, quick=True)
-    checks = [r for r in records if isinstance(r, flt.Check)]
-    assert len(checks) == 4 and not [c.name for c in checks if not c.passed]
-    assert figures == []
-    assert "| steel | 200 | 2.4 |" in text
-    ratio = {r.name: r.value for r in records if isinstance(r, flt.Finding)}
-    # the smooth run is slower with the ends open, the rough one faster (module docstring)
-    assert ratio["finite length, smooth, all rock, stokes-exact: mean speed open / infinite, smallest"] < 1.0
-    assert ratio["finite length, rough, stokes-exact: steady speed open / infinite, smallest"] > 1.0
-    assert math.isfinite(ratio["largest estimated inertial force error of all runs"])

@@ -13,16 +13,16 @@ tests/test_registry.py.
 import numpy as np
 import pytest
 
-from dynamics.apparatus import preset
 from dynamics.equations import full
 from lubrication.cavitation import cavitating_forces
 from lubrication.closed_form import closed_form_forces
-from lubrication.geometry import Annulus, Fluid, Motion
+from lubrication.geometry import Annulus, Motion
 from lubrication.registry import kernel_model
 from lubrication.reynolds import reynolds_forces
 from lubrication.stokes_exact import stokes_exact_forces
 
-FLUID = Fluid(nu=2e-4, rho=960.0)
+from apparatus import OIL, STEEL
+
 MOTIONS = (Motion(eps_dot=-3e-4, chi_dot=0.4, omega_a=1.1, omega_b=-0.7),
            Motion(eps_dot=2e-3, chi_dot=-0.2, omega_a=0.3, omega_b=0.9))
 
@@ -44,15 +44,15 @@ def test_packed_model_gives_the_lubrication_packages_forces(model, reference, ka
     packed = kernel_model(name, **options)
     annulus = Annulus.from_kappa(0.0127, 0.0179, kappa, length=0.1)
     for motion in MOTIONS:
-        got = np.array(packed.forces(annulus, motion, FLUID).as_tuple())
-        want = np.array(reference(annulus, motion, FLUID).as_tuple())
+        got = np.array(packed.forces(annulus, motion, OIL).as_tuple())
+        want = np.array(reference(annulus, motion, OIL).as_tuple())
         np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-14 * np.max(np.abs(want)))
 
 
 def test_a_kernel_is_compiled_into_the_equations_once_for_all_its_options():
     """The options are data: the closed forms with and without open ends take the same compiled functions,
     and the right-hand side sees the data it is given (the ends change the forces, so the rates)."""
-    ap = preset("steel")
+    ap = STEEL
     infinite = kernel_model("closed-form")
     open_ends = kernel_model("closed-form", ends="open", length_over_a=ap.length / ap.a)
     assert full.model_functions(infinite) is full.model_functions(open_ends)

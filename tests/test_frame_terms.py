@@ -34,6 +34,8 @@ from dynamics.apparatus import preset
 from dynamics.equations import full
 from lubrication.registry import kernel_model
 
+from apparatus import STEEL
+
 
 def _state(ap, kappa, chi, eps_dot, chi_dot, omega_a, omega_b):
     """The state vector at (kappa, chi) with A moving at eps' e_eps + eps chi' e_chi."""
@@ -246,6 +248,6 @@ def test_frame_terms_are_refused_for_the_reduced_equations():
     from dynamics.equations.reduced import ReducedParams
 
     with pytest.raises(ValueError, match="frame_terms"):
-        simulate(preset("steel"), Initial(0.5), 1.0, equations="reduced", frame_terms="quasi-steady")
+        simulate(STEEL, Initial(0.5), 1.0, equations="reduced", frame_terms="quasi-steady")
     with pytest.raises(ValueError, match="frame_terms must be one of"):
         simulate(ReducedParams(0.2, 1.0, 2.0), Initial(0.5), 1.0, frame_terms="exact")

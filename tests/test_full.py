@@ -13,6 +13,8 @@ from dynamics.equations.special import inertial_time
 from dynamics.simulation import Initial, simulate
 from lubrication.registry import kernel_model
 
+from apparatus import STEEL
+
 RTOL = 1e-10
 
 
@@ -51,7 +53,7 @@ def test_approaches_the_reduced_model_at_first_order_in_delta_over_a():
 def test_reynolds_forces_give_the_closed_form_trajectory():
     """The Reynolds solver's forces equal (2.5)-(2.7) to rounding, so swapping them changes the
     trajectory by no more than the integrator's own error (measured against rtol / 100)."""
-    apparatus = preset("steel")
+    apparatus = STEEL
     t_end = 20.0
     t = np.linspace(0, t_end, 400)
 
@@ -90,7 +92,7 @@ def test_steel_apparatus_on_a_level_plane_sediments_as_3_3_after_its_inertial_ti
 
 
 def test_starts_exactly_at_the_centre():
-    apparatus = preset("steel")
+    apparatus = STEEL
     run = simulate(apparatus, Initial(0.0, 0.0), 10.0, forces=kernel_model("closed-form"))
     assert run.status == "completed" and run.equations == "full"
     for values in run.columns.values():
@@ -146,7 +148,7 @@ def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
 
 def test_rhs_is_regular_through_the_centre():
     """The right-hand side is continuous at eps = 0 for any direction of approach."""
-    apparatus = preset("steel")
+    apparatus = STEEL
     model = kernel_model("closed-form")
     args = full.run_args(apparatus, model, gap_floor=1e-9)
     rhs = full.model_functions(model).rhs
@@ -175,7 +177,7 @@ def test_jacobian_is_the_derivative_of_the_right_hand_side(polar, kappa):
     """Every column against Richardson-extrapolated differences of the right-hand side taken here, with
     steps 1e-3 of each variable's scale (truncation O(h^4) ~ 1e-12, rounding ~ 1e-13/h ~ 1e-10 relative):
     the X_b column, which the Jacobian does not evaluate, must come out zero here too."""
-    apparatus = preset("steel")
+    apparatus = STEEL
     model = kernel_model("closed-form")
     args = full.run_args(apparatus, model, gap_floor=1e-9)
     functions = full.model_functions(model)
@@ -197,7 +199,7 @@ def test_polar_velocity_carries_the_same_motion(rng, one_minus_kappa):
     the time derivative polar_rhs gives, to the O(h^2) of a central difference along the flow (1e-7
     relative here; at 1 - kappa = 1e-9 the difference itself loses the digits); to_cartesian undoes to_polar
     to rounding."""
-    apparatus = preset("steel")
+    apparatus = STEEL
     model = kernel_model("closed-form")
     args = full.run_args(apparatus, model, gap_floor=1e-12)
     functions = full.model_functions(model)

@@ -6,6 +6,8 @@ import pytest
 
 from lubrication import Annulus, Fluid, Motion
 
+from apparatus import A, B
+
 
 @pytest.mark.parametrize(
     ("kwargs", "words"),
@@ -48,7 +50,7 @@ def test_motion_rejects_non_finite():
 
 def test_near_contact_gap_keeps_its_precision():
     """1 - kappa given directly survives where eps/delta would round it away."""
-    annulus = Annulus(a=0.008, b=0.01125, one_minus_kappa=1e-17)
+    annulus = Annulus(a=A, b=B, one_minus_kappa=1e-17)
     assert annulus.one_minus_kappa == 1e-17
     assert annulus.kappa == 1.0 - 1e-17  # rounds to 1.0, which is why the field exists
     assert annulus.eps == pytest.approx(annulus.delta)

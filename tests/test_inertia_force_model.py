@@ -28,6 +28,8 @@ from lubrication.inertia import (
 )
 from lubrication.registry import kernel_model
 
+from apparatus import A, B
+
 APPARATUS_GAP = 0.325 / 0.8
 
 
@@ -139,7 +141,7 @@ def test_corrected_error_estimate_against_the_stored_newton_sweeps():
 @pytest.mark.parametrize("model", ["closed-form", "stokes-exact"])
 def test_correction_is_the_tabulated_first_order_force(model):
     """The compiled evaluation adds exactly the Python evaluation of the first inertial correction."""
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.63, length=0.1)
+    annulus = Annulus.from_kappa(A, B, 0.63, length=0.1)
     fluid = Fluid(nu=2e-4, rho=960.0)
     motion = Motion(eps_dot=1e-3, chi_dot=4.0, omega_a=6.0, omega_b=1.5)
     plain = kernel_model(model).forces(annulus, motion, fluid)

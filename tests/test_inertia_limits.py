@@ -25,6 +25,8 @@ from lubrication.inertia import (
     thin_gap_small_kappa,
 )
 
+from apparatus import ALUMINIUM, STEEL
+
 
 def _columns(ap, t, kappa, phi_dot, omega_a, omega_b, kappa_dot=0.0):
     """SI columns of a run, as simulate() writes them, from arrays (broadcast)."""
@@ -76,7 +78,7 @@ def test_report_error_against_the_exact_small_eccentricity_solution():
     node to the next: at kappa = 0.01 the interpolant is 0.18% low. Tolerance 3e-3.
     W_a a = W_b b (equal wall speeds, the direction of the largest G).
     """
-    ap = preset("aluminium")
+    ap = ALUMINIUM
     d, b = ap.delta_over_a, 1.0 + ap.delta_over_a
     chi_dot, w = 40.0, 0.8  # frame rate and the inner wall's relative rate (rad/s)
     columns = _columns(ap, [0.0, 1.0], 0.01, chi_dot, chi_dot + w, chi_dot + w * ap.a / ap.b)
@@ -97,7 +99,7 @@ def test_report_gives_the_error_at_the_worst_reynolds_number_and_the_worst_error
     """Two states: the first has the larger Re* (co-rotating walls, kappa = 0.9, where G is small),
     the second the larger error (kappa = 0.2); counter-rotating walls keep it bounded (below Re*/10)
     where their Stokes f_chi cancels."""
-    ap = preset("aluminium")
+    ap = ALUMINIUM
     per = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed
     w1 = 2.0 / (per * ap.a)  # Re* = 2 from the inner wall
     w2 = 1.0 / (per * ap.a)  # Re* = 1
@@ -127,7 +129,7 @@ def test_report_of_corrected_forces_gives_what_the_correction_leaves():
     time; the plain entries are unchanged, and a report without the correction has no such entry."""
     from lubrication.inertia import CORRECTED_MEASURED_TO, corrected_error_estimate
 
-    ap = preset("aluminium")
+    ap = ALUMINIUM
     per = ap.delta**2 / (ap.nu * ap.a)
     walls = np.array([0.5, 3.0, 1.0]) / (per * ap.a)  # Re* = 0.5, 3, 1 from the inner wall
     columns = _columns(ap, [0.0, 0.2, 0.4], 0.5, 10.0, 10.0 + walls, 10.0)
@@ -159,7 +161,7 @@ def test_a_corrected_run_stopped_at_the_reynolds_limit_quotes_what_its_forces_le
 
 def test_frame_force_of_a_rigidly_turning_device():
     """Walls and line of centres turning together: the frame force is (m_eff - m'_a) eps chi'^2."""
-    ap = preset("steel")
+    ap = STEEL
     columns = _columns(ap, [0.0, 1.0], [0.3, 0.8], [5.0, 30.0], [5.0, 30.0], [5.0, 30.0])
     expected = (ap.m_eff - ap.m_a_reduced) * columns["eps"] * columns["phi_dot"] ** 2 / (ap.m_a_reduced * ap.g)
     np.testing.assert_allclose(limits.frame_force_over_weight(ap, columns), expected, rtol=1e-12)

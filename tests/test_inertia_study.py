@@ -9,6 +9,7 @@ pytest.importorskip("skfem")
 
 from dynamics.apparatus import PRESETS  # noqa: E402
 from validation import inertia  # noqa: E402
+from validation.reports import inertia as inertia_report  # noqa: E402
 
 
 def test_worst_first_order_error_tends_to_the_thin_gap_co_rotation():
@@ -98,5 +99,5 @@ def test_the_study_passes_its_checks(tmp_path):
     result = inertia.run()
     failed = [c["name"] for c in result["checks"] if not c["passed"]]
     assert not failed
-    paths = inertia.write_outputs(result, tmp_path)
+    paths = inertia_report.write_outputs(result, tmp_path)
     assert all(p.exists() and p.stat().st_size > 0 for p in paths)

@@ -126,3 +126,18 @@ def test_every_name_the_packages_export_on_first_use_is_there():
     for package in (dynamics, lubrication):
         missing = [name for name in package.__all__ if getattr(package, name, None) is None]
         assert not missing, (package.__name__, missing)
+
+
+def test_the_check_modules_draw_and_word_nothing(graph):
+    """A study of ``validation`` computes and checks; its figures and markdown are in ``validation.reports``.
+
+    No check module imports matplotlib or ``validation.reports`` (lazily neither); only the
+    suite and the command line, which run the groups, import the reports.
+    """
+    runners = {"validation.suite", "validation.cli"}
+    checks = [m for m in graph
+              if m.startswith("validation") and not m.startswith("validation.reports") and m not in runners]
+    wrong = [(module, imported) for module in checks for imported, _ in graph[module]
+             if imported.split(".")[0] == "matplotlib" or imported.startswith("validation.reports")]
+    assert not wrong
+    assert any(m.startswith("validation.reports.") for m in graph)

@@ -34,6 +34,8 @@ from lubrication.navier_stokes import (  # noqa: E402
 )
 from lubrication.stokes import stokes_resistance  # noqa: E402
 
+from apparatus import A, B  # noqa: E402
+
 APPARATUS_GAP = 0.325 / 0.8  # delta/a of Table 2
 SMALL_MESH = {"n_around": 64, "n_across": 4}
 
@@ -73,7 +75,7 @@ def test_small_density_reproduces_stokes():
     The first inertial term is rho a^2/nu ~ 1e-10 of the force here, so the
     agreement is to 1e-9 relative; the Stokes part of the result is exact.
     """
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.6, length=0.1)
+    annulus = Annulus.from_kappa(A, B, 0.6, length=0.1)
     fluid = Fluid(nu=1e6, rho=950.0)
     motion = Motion(eps_dot=1e-3, omega_a=2.0, omega_b=-1.0)
     out = navier_stokes_forces(annulus, motion, fluid, **SMALL_MESH)
@@ -362,7 +364,7 @@ def test_sweep_removes_the_frame_force():
 
 def test_frame_forces_closed_form():
     """-rho pi a^2 L chi'^2 eps along e_eps, +2 rho pi a^2 L chi' eps' along e_chi."""
-    annulus = Annulus(a=0.008, b=0.01125, eps=0.001, length=0.1)
+    annulus = Annulus(a=A, b=B, eps=0.001, length=0.1)
     fluid = Fluid(nu=1e-4, rho=950.0)
     motion = Motion(eps_dot=0.002, chi_dot=3.0, omega_a=1.0)
     f = frame_forces(annulus, motion, fluid)
@@ -446,7 +448,7 @@ def test_first_order_force_model_against_a_navier_stokes_solve():
     the table interpolates to 3% (test above), and the rotating frame's force is
     the exact closed form, so their sum must match the total to that.
     """
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.45, length=0.1)
+    annulus = Annulus.from_kappa(A, B, 0.45, length=0.1)
     fluid = Fluid(nu=5e-4, rho=950.0)
     re_star = 0.1
     # W_b b delta / nu = Re, so W_b = Re* a nu / (delta^2 b)
@@ -509,22 +511,22 @@ def test_error_estimate_rejects_bad_input(kwargs, name):
 
 def test_reynolds_numbers_of_an_instant():
     """Relative to the line of centres: W = Omega - chi'; Re* = max |Re| delta / a."""
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.5)
+    annulus = Annulus.from_kappa(A, B, 0.5)
     fluid = Fluid(nu=5e-5, rho=950.0)
     motion = Motion(eps_dot=1e-3, chi_dot=10.0, omega_a=11.0, omega_b=8.0)
     re_a, re_b, re_sq = relative_reynolds(annulus, motion, fluid)
     delta = 0.00325
-    assert re_a == pytest.approx(1.0 * 0.008 * delta / 5e-5, rel=1e-12)
-    assert re_b == pytest.approx(-2.0 * 0.01125 * delta / 5e-5, rel=1e-12)
+    assert re_a == pytest.approx(1.0 * A * delta / 5e-5, rel=1e-12)
+    assert re_b == pytest.approx(-2.0 * B * delta / 5e-5, rel=1e-12)
     assert re_sq == pytest.approx(1e-3 * delta / 5e-5, rel=1e-12)
-    assert reduced_reynolds(annulus, motion, fluid) == pytest.approx(abs(re_b) * delta / 0.008, rel=1e-12)
+    assert reduced_reynolds(annulus, motion, fluid) == pytest.approx(abs(re_b) * delta / A, rel=1e-12)
 
 
 # --- input checks ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize(("kwargs", "name"), [({"steps": 0}, "steps"), ({"frame_terms": "none"}, "frame_terms")])
 def test_navier_stokes_forces_rejects_bad_options(kwargs, name):
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.5)
+    annulus = Annulus.from_kappa(A, B, 0.5)
     with pytest.raises(ValueError, match=name):
         navier_stokes_forces(annulus, Motion(omega_a=1.0), Fluid(nu=1e-4, rho=950.0), **SMALL_MESH, **kwargs)
 

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from validation.checks import Check, Finding, absolute, relative
-from validation.paper_claims import CLAIMS, Claim, claim_rows, claims_table
+from validation.reports.paper_claims import CLAIMS, Claim, claim_rows, claims_table
 
 
 def _one(f):

@@ -27,6 +27,8 @@ from lubrication.spec import ForceModelSpec
 from numerics.jit import jit
 from numerics.keys import Key
 
+from apparatus import A, B, L, CLI_GEOMETRY, PRESET_FLUID
+
 ROOT = Path(__file__).resolve().parents[1]
 #: The toy model's force along e_eps (N), along e_chi (N) and torque (N m), whatever the state.
 F_EPS, F_CHI, T_A = -1e-3, 2e-4, -3e-6
@@ -53,14 +55,14 @@ def toy():
 
 
 def test_a_model_registered_in_a_test_is_a_model_of_fluid_forces(toy):
-    annulus = Annulus.from_kappa(0.008, 0.01125, 0.4, length=0.1)
+    annulus = Annulus.from_kappa(A, B, 0.4, length=0.1)
     f = registry.fluid_forces(annulus, Motion(omega_a=1.0), Fluid(2e-4, 1000.0), "constant")
     assert f.as_tuple() == (F_EPS, F_CHI, T_A)
     assert "constant" in registry.names(trajectories=True)
 
 
 def test_a_registered_model_is_a_choice_of_snail_forces(toy, capsys):
-    code = main(["forces", "--model", "constant", "--a", "0.008", "--b", "0.01125", "--kappa", "0.4", "--json"])
+    code = main(["forces", "--model", "constant", *CLI_GEOMETRY, "--kappa", "0.4", "--json"])
     out = json.loads(capsys.readouterr().out)
     assert code == 0 and (out["model"], out["f_eps"], out["f_chi"], out["T_a"]) == ("constant", F_EPS, F_CHI, T_A)
 
@@ -113,9 +115,8 @@ def test_a_name_is_registered_once(toy):
 
 # -- the compositions' rules, each stated once ---------------------------------------------------------
 
-ANNULUS = Annulus.from_kappa(0.008, 0.01125, 0.6, length=0.1035)
+ANNULUS = Annulus.from_kappa(A, B, 0.6, length=L)
 MOTION = Motion(eps_dot=-1e-5, chi_dot=0.2, omega_a=1.0, omega_b=0.5)
-FLUID = Fluid(2e-4, 1000.0)
 
 
 @pytest.mark.parametrize(("model", "options", "words"), [
@@ -132,21 +133,21 @@ FLUID = Fluid(2e-4, 1000.0)
 ])
 def test_a_composition_a_model_does_not_take_is_refused_naming_the_option(model, options, words):
     with pytest.raises(ValueError, match=words.replace("(", r"\(").replace("[", r"\[")):
-        registry.fluid_forces(ANNULUS, MOTION, FLUID, model, **options)
+        registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, model, **options)
 
 
 def test_compositions_a_model_takes_give_its_forces():
     for model in ("closed-form", "stokes-exact"):
-        plain = registry.fluid_forces(ANNULUS, MOTION, FLUID, model)
-        corrected = registry.fluid_forces(ANNULUS, MOTION, FLUID, model, inertia="first-order")
-        open_ends = registry.fluid_forces(ANNULUS, MOTION, FLUID, model, ends="open")
+        plain = registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, model)
+        corrected = registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, model, inertia="first-order")
+        open_ends = registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, model, ends="open")
         assert corrected.f_chi == plain.f_chi and corrected.f_eps != plain.f_eps
         assert abs(open_ends.f_chi) < abs(plain.f_chi)  # the ends take part of the rotation force
-    film = registry.fluid_forces(ANNULUS, MOTION, FLUID, "reynolds", cavitation="half-sommerfeld", p_cav=1e5)
+    film = registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, "reynolds", cavitation="half-sommerfeld", p_cav=1e5)
     assert film.model == "reynolds/half-sommerfeld"
 
 
 def test_a_motion_whose_forces_overflow_is_refused():
-    near = Annulus(a=0.008, b=0.01125, length=0.1, one_minus_kappa=1e-9)
+    near = Annulus(a=A, b=B, length=0.1, one_minus_kappa=1e-9)
     with pytest.raises(ValueError, match="overflow a double"):
-        registry.fluid_forces(near, Motion(chi_dot=1e308, omega_a=-1e308), FLUID, "stokes-exact")
+        registry.fluid_forces(near, Motion(chi_dot=1e308, omega_a=-1e308), PRESET_FLUID, "stokes-exact")

@@ -27,8 +27,8 @@ from lubrication import (
 from lubrication.reynolds import psi_rule
 from validation import lubrication_checks as checks
 
-A, B, L = 0.008, 0.01125, 0.1035
-FLUID = Fluid(nu=2e-4, rho=960.0)
+from apparatus import A, B, L, OIL
+
 KAPPAS = (0.0, 1e-8, 0.1, 0.5, 0.9, 0.99, 0.999999)
 MOTIONS = {
     "squeeze": Motion(eps_dot=1e-4),
@@ -45,7 +45,7 @@ def _term_sizes(annulus, motion):
     Rounding errors are relative to these, not to the result, which can be a small
     difference of them (f_chi as kappa -> 0, the W_b torque as kappa -> 1).
     """
-    delta, c = annulus.delta, 4 * math.pi * FLUID.mu * annulus.a**3 * annulus.length
+    delta, c = annulus.delta, 4 * math.pi * OIL.mu * annulus.a**3 * annulus.length
     zeta = math.sqrt(annulus.one_minus_kappa * (1 + annulus.kappa))
     w = abs(motion.w_a) + abs(motion.w_b)
     # the rotation's f_eps vanishes by symmetry, from sums of sin(theta) h^-2 of size 1/(delta zeta)^2
@@ -66,8 +66,8 @@ def _scales(f):
 @pytest.mark.parametrize("n", [16, 64])
 def test_reproduces_closed_forms(kappa, motion, n):
     annulus = Annulus.from_kappa(A, B, kappa, L)
-    exact = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
-    got = np.array(reynolds_forces(annulus, motion, FLUID, n=n).as_tuple())
+    exact = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
+    got = np.array(reynolds_forces(annulus, motion, OIL, n=n).as_tuple())
     sizes = _term_sizes(annulus, motion)
     assert np.all(np.abs(got - exact) <= checks.ROUNDING_TOLERANCE * sizes)
 
@@ -89,8 +89,8 @@ def test_sommerfeld_grid_accuracy_does_not_depend_on_kappa(kappa):
     """Eight cells suffice at any kappa: the error is flat as kappa -> 1."""
     annulus = Annulus.from_kappa(A, B, kappa, L)
     motion = MOTIONS["combined"]
-    exact = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
-    got = np.array(reynolds_forces(annulus, motion, FLUID, n=8, points_per_cell=1).as_tuple())
+    exact = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
+    got = np.array(reynolds_forces(annulus, motion, OIL, n=8, points_per_cell=1).as_tuple())
     assert np.max(np.abs(got - exact) / _scales(exact)) < 1e-13
 
 
@@ -106,11 +106,11 @@ def test_pressure_formula_is_an_antiderivative_of_the_reynolds_flux():
     kappa = 0.6
     annulus = Annulus.from_kappa(A, B, kappa, L)
     motion = Motion(eps_dot=2e-4, omega_a=1.0)
-    delta, mu, u = B - A, FLUID.mu, A * motion.w_a
+    delta, mu, u = B - A, OIL.mu, A * motion.w_a
     theta = np.linspace(-3.0, 3.0, 13)
     dt = 1e-5
-    dp = (checks.sommerfeld_pressure(theta + dt, annulus, motion, FLUID)
-          - checks.sommerfeld_pressure(theta - dt, annulus, motion, FLUID)) / (2 * dt)
+    dp = (checks.sommerfeld_pressure(theta + dt, annulus, motion, OIL)
+          - checks.sommerfeld_pressure(theta - dt, annulus, motion, OIL)) / (2 * dt)
     h = delta * (1 - kappa * np.cos(theta))
     zeta2 = 1 - kappa**2
     qhat = 0.5 * u * delta * 2 * zeta2 / (2 + kappa**2)  # (U/2) oint h^-2 / oint h^-3, (B8)-(B9)
@@ -136,11 +136,11 @@ def test_linear_and_superposing_in_the_velocities(kappa):
     annulus = Annulus.from_kappa(A, B, kappa, L)
     parts = [Motion(eps_dot=2e-5), Motion(omega_a=0.9), Motion(omega_b=-0.4), Motion(chi_dot=0.25)]
     total = Motion(eps_dot=2e-5, omega_a=0.9, omega_b=-0.4, chi_dot=0.25)
-    summed = sum(np.array(reynolds_forces(annulus, m, FLUID).as_tuple()) for m in parts)
-    whole = np.array(reynolds_forces(annulus, total, FLUID).as_tuple())
+    summed = sum(np.array(reynolds_forces(annulus, m, OIL).as_tuple()) for m in parts)
+    whole = np.array(reynolds_forces(annulus, total, OIL).as_tuple())
     np.testing.assert_allclose(whole, summed, rtol=1e-13, atol=1e-13 * np.abs(summed).max())
     scaled = np.array(reynolds_forces(annulus, Motion(eps_dot=-7e-5, omega_a=-3.15, omega_b=1.4,
-                                                      chi_dot=-0.875), FLUID).as_tuple())
+                                                      chi_dot=-0.875), OIL).as_tuple())
     np.testing.assert_allclose(scaled, -3.5 * whole, rtol=1e-13, atol=1e-13 * np.abs(whole).max())
 
 
@@ -150,7 +150,7 @@ def test_reflection_flips_f_chi_and_torque(kappa):
     annulus = Annulus.from_kappa(A, B, kappa, L)
     m = Motion(eps_dot=1e-5, chi_dot=0.2, omega_a=1.1, omega_b=-0.3)
     mirror = Motion(eps_dot=1e-5, chi_dot=-0.2, omega_a=-1.1, omega_b=0.3)
-    f, g = (np.array(reynolds_forces(annulus, x, FLUID).as_tuple()) for x in (m, mirror))
+    f, g = (np.array(reynolds_forces(annulus, x, OIL).as_tuple()) for x in (m, mirror))
     np.testing.assert_allclose(g, f * np.array([1, -1, -1]), rtol=1e-13, atol=1e-15 * np.abs(f).max())
 
 
@@ -160,8 +160,8 @@ def test_user_profile_equal_to_the_thin_gap_gives_the_same_forces():
     eps, delta = annulus.eps, annulus.delta
     motion = Motion(eps_dot=3e-5, omega_a=1.0, omega_b=0.5)
     thin = GapProfile(h=lambda t: delta - eps * np.cos(t), h_dot=lambda t: -motion.eps_dot * np.cos(t))
-    exact = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
-    got = np.array(reynolds_forces(annulus, motion, FLUID, profile=thin, n=64, points_per_cell=4).as_tuple())
+    exact = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
+    got = np.array(reynolds_forces(annulus, motion, OIL, profile=thin, n=64, points_per_cell=4).as_tuple())
     # the squeeze flux of a user profile is integrated cell by cell: O(dpsi^8) here
     np.testing.assert_allclose(got, exact, rtol=1e-10)
 
@@ -172,8 +172,8 @@ def test_rotating_a_user_profile_rotates_the_force():
     eps, delta = annulus.eps, annulus.delta
     motion = Motion(omega_a=1.0)
     turned = GapProfile(h=lambda t: delta - eps * np.cos(t - angle))
-    f = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
-    g = np.array(reynolds_forces(annulus, motion, FLUID, profile=turned, n=64, points_per_cell=3).as_tuple())
+    f = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
+    g = np.array(reynolds_forces(annulus, motion, OIL, profile=turned, n=64, points_per_cell=3).as_tuple())
     c, s = math.cos(angle), math.sin(angle)
     np.testing.assert_allclose(g, [c * f[0] - s * f[1], s * f[0] + c * f[1], f[2]], rtol=1e-10,
                                atol=1e-10 * abs(f[1]))
@@ -185,14 +185,14 @@ def test_wavy_profile_differs_from_the_smooth_one_and_converges():
     delta, eps = annulus.delta, annulus.eps
     wavy = GapProfile(h=lambda t: delta - eps * np.cos(t) + 0.05 * delta * np.cos(7 * t))
     motion = Motion(omega_a=1.0)
-    forces = [np.array(reynolds_forces(annulus, motion, FLUID, profile=wavy, n=n).as_tuple())
+    forces = [np.array(reynolds_forces(annulus, motion, OIL, profile=wavy, n=n).as_tuple())
               for n in (16, 32, 64, 256)]
     finest = forces[-1]
     errors = [np.abs(f - finest).max() / np.abs(finest).max() for f in forces[:-1]]
     # measured: 1.1e-3, 2.5e-6, 4.8e-10: each doubling gains more than the last (exponential)
     assert errors[0] > 100 * errors[1] > 1e4 * errors[2]
     assert errors[2] < 1e-8
-    smooth = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
+    smooth = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
     assert np.abs(finest - smooth).max() > 1e-3 * np.abs(smooth).max()
 
 
@@ -202,8 +202,8 @@ def test_eccentric_gap_tends_to_the_thin_gap_at_first_order_in_delta_over_a():
     for r in ratios:
         annulus = Annulus.from_kappa(A, A * (1 + r), 0.7, L)
         motion = Motion(eps_dot=1e-6, omega_a=1.0, omega_b=0.3)
-        thin = np.array(reynolds_forces(annulus, motion, FLUID).as_tuple())
-        exact_gap = np.array(reynolds_forces(annulus, motion, FLUID, profile="eccentric", n=64).as_tuple())
+        thin = np.array(reynolds_forces(annulus, motion, OIL).as_tuple())
+        exact_gap = np.array(reynolds_forces(annulus, motion, OIL, profile="eccentric", n=64).as_tuple())
         diffs.append(np.max(np.abs(exact_gap - thin) / _scales(thin)))
     slope = np.polyfit(np.log(ratios), np.log(diffs), 1)[0]
     assert slope == pytest.approx(1.0, abs=0.1)
@@ -221,7 +221,7 @@ def test_eccentric_gap_tends_to_the_thin_gap_at_first_order_in_delta_over_a():
 def test_finite_everywhere_in_the_valid_domain(kappa, delta_over_a, velocities, n, grid, profile):
     annulus = Annulus.from_kappa(A, A * (1 + delta_over_a), kappa, L)
     motion = Motion(*velocities)
-    f = reynolds_forces(annulus, motion, FLUID, n=n, grid=grid, profile=profile)
+    f = reynolds_forces(annulus, motion, OIL, n=n, grid=grid, profile=profile)
     assert all(math.isfinite(x) for x in f.as_tuple())
 
 
@@ -232,8 +232,8 @@ def test_finite_everywhere_in_the_valid_domain(kappa, delta_over_a, velocities, 
 def test_agrees_with_closed_forms_over_the_domain(kappa, velocities):
     annulus = Annulus.from_kappa(A, B, kappa, L)
     motion = Motion(velocities[0] * 1e-4, *velocities[1:])
-    exact = np.array(closed_form_forces(annulus, motion, FLUID).as_tuple())
-    got = np.array(reynolds_forces(annulus, motion, FLUID).as_tuple())
+    exact = np.array(closed_form_forces(annulus, motion, OIL).as_tuple())
+    got = np.array(reynolds_forces(annulus, motion, OIL).as_tuple())
     sizes = _term_sizes(annulus, motion)
     assert np.all(np.abs(got - exact) <= checks.ROUNDING_TOLERANCE * sizes)
 
@@ -250,7 +250,7 @@ def test_agrees_with_closed_forms_over_the_domain(kappa, velocities):
 )
 def test_bad_discretisation_is_refused(kwargs, message):
     with pytest.raises(ValueError, match=message):
-        reynolds_forces(Annulus.from_kappa(A, B, 0.5, L), Motion(), FLUID, **kwargs)
+        reynolds_forces(Annulus.from_kappa(A, B, 0.5, L), Motion(), OIL, **kwargs)
 
 
 @pytest.mark.parametrize(
@@ -265,12 +265,12 @@ def test_bad_discretisation_is_refused(kwargs, message):
 )
 def test_bad_profile_is_refused(profile, message):
     with pytest.raises(ValueError, match=message):
-        reynolds_forces(Annulus.from_kappa(A, B, 0.5, L), Motion(omega_a=1.0), FLUID, profile=profile)
+        reynolds_forces(Annulus.from_kappa(A, B, 0.5, L), Motion(omega_a=1.0), OIL, profile=profile)
 
 
 def test_pressure_has_zero_mean_and_the_right_nodes():
     annulus = Annulus.from_kappa(A, B, 0.95, L)
-    sol = reynolds_pressure(annulus, Motion(omega_a=1.0), FLUID, n=64, grid="uniform")
+    sol = reynolds_pressure(annulus, Motion(omega_a=1.0), OIL, n=64, grid="uniform")
     np.testing.assert_allclose(sol.theta, -np.pi + 2 * np.pi * np.arange(64) / 64, atol=1e-15)
     assert abs(np.mean(sol.p)) < 1e-12 * np.abs(sol.p).max()
 
@@ -284,7 +284,7 @@ def test_uniform_grid_error_estimate_bounds_the_measured_error(kappa):
     from lubrication.reynolds import uniform_grid_cells, uniform_grid_error
 
     def measured(n):
-        annulus = Annulus.from_kappa(a=0.008, b=0.01125, kappa=kappa, length=0.1)
+        annulus = Annulus.from_kappa(a=A, b=B, kappa=kappa, length=0.1)
         fluid = Fluid(nu=2e-4, rho=960.0)
         got = resistance(annulus, fluid, "reynolds", n=n, grid="uniform").as_tuple()
         want = resistance(annulus, fluid, "closed-form").as_tuple()

@@ -42,8 +42,8 @@ from lubrication.reynolds2d import (
 )
 from lubrication.reynolds_kernels import THIN, film_forces
 
-A, B, L = 0.008, 0.01125, 0.1035  # the apparatus, m
-FLUID = Fluid(nu=2e-4, rho=960.0)
+from apparatus import A, B, L, OIL
+
 UNIT = Fluid(nu=1.0, rho=1.0)
 MOTIONS = {
     "squeeze": Motion(eps_dot=1e-4),
@@ -158,11 +158,11 @@ def test_richardson_is_fourth_order_in_each_direction(direction):
     """
     length_over_a = 1.0
     annulus = Annulus.from_kappa(A, B, 0.0, length_over_a * A)
-    exact = small_eccentricity_factor(length_over_a) * closed_form_forces(annulus, Motion(eps_dot=1.0), FLUID).f_eps
+    exact = small_eccentricity_factor(length_over_a) * closed_form_forces(annulus, Motion(eps_dot=1.0), OIL).f_eps
 
     def error(size):
         grid = {"n": size, "n_axial": 2048} if direction == "theta" else {"n": 4096, "n_axial": size}
-        return reynolds2d_forces(annulus, Motion(eps_dot=1.0), FLUID, **grid).f_eps / exact - 1.0
+        return reynolds2d_forces(annulus, Motion(eps_dot=1.0), OIL, **grid).f_eps / exact - 1.0
 
     sizes = np.array([16, 32, 64, 128]) if direction == "theta" else np.array([8, 16, 32, 64])
     plain = np.array([error(s) for s in sizes])
@@ -174,8 +174,8 @@ def test_richardson_is_fourth_order_in_each_direction(direction):
 def test_extrapolated_error_at_the_apparatus():
     """Both directions at once, L/a = 12.9, kappa = 0: measured 5e-7 at (128, 64), 5e-8 at (256, 128)."""
     annulus = Annulus.from_kappa(A, B, 0.0, L)
-    exact = small_eccentricity_factor(L / A) * closed_form_forces(annulus, Motion(eps_dot=1.0), FLUID).f_eps
-    got = reynolds2d_forces(annulus, Motion(eps_dot=1.0), FLUID, n=128, n_axial=64, extrapolate=True).f_eps
+    exact = small_eccentricity_factor(L / A) * closed_form_forces(annulus, Motion(eps_dot=1.0), OIL).f_eps
+    got = reynolds2d_forces(annulus, Motion(eps_dot=1.0), OIL, n=128, n_axial=64, extrapolate=True).f_eps
     assert _rel(got, exact) < 1e-6
 
 
@@ -186,8 +186,8 @@ def test_extrapolated_error_at_the_apparatus():
 @pytest.mark.parametrize("length", [0.1 * A, L, 100 * L])
 def test_sealed_ends_give_the_one_dimensional_solution(kappa, motion, length):
     annulus = Annulus.from_kappa(A, B, kappa, length)
-    one_d = np.array(reynolds_forces(annulus, motion, FLUID, n=64).as_tuple())
-    two_d = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=8, ends="sealed").as_tuple())
+    one_d = np.array(reynolds_forces(annulus, motion, OIL, n=64).as_tuple())
+    two_d = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=8, ends="sealed").as_tuple())
     scale = np.abs(one_d).max()  # the zero entries (by symmetry) are rounding against the others
     assert np.all(np.abs(two_d - one_d) <= 1e-12 * scale)
 
@@ -200,9 +200,9 @@ def test_sealed_ends_on_the_clustered_grid_are_the_one_dimensional_scheme(kappa,
     kappa_g, omk_g = grid_parameter(kappa, annulus.one_minus_kappa, 0.5)
     rule, _ = psi_rule(64, 2)
     empty = np.empty(0)
-    ref = np.array(film_forces(THIN, A, B, FLUID.mu, L, kappa, annulus.one_minus_kappa, motion.eps_dot,
+    ref = np.array(film_forces(THIN, A, B, OIL.mu, L, kappa, annulus.one_minus_kappa, motion.eps_dot,
                                motion.w_a, motion.w_b, kappa_g, omk_g, *rule, 2, empty, empty, 1.0, 0.0, empty))
-    got = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=8, ends="sealed",
+    got = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=8, ends="sealed",
                                      clustering=0.5).as_tuple())
     assert np.all(np.abs(got - ref) <= 1e-12 * np.abs(ref).max())
 
@@ -216,8 +216,8 @@ def test_sealed_ends_through_the_sparse_solver(kappa):
     two = GapProfile2D(h=lambda t, z: delta - eps * np.cos(t) + 0.0 * z,
                        h_dot=lambda t, z: -eps_dot * np.cos(t) + 0.0 * z)
     motion = Motion(omega_a=0.8, omega_b=-0.3)
-    ref = np.array(reynolds_forces(annulus, motion, FLUID, n=64, profile=one).as_tuple())
-    got = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=16, ends="sealed",
+    ref = np.array(reynolds_forces(annulus, motion, OIL, n=64, profile=one).as_tuple())
+    got = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=16, ends="sealed",
                                      profile=two).as_tuple())
     assert np.all(np.abs(got - ref) <= 1e-10 * np.abs(ref).max())
 
@@ -230,8 +230,8 @@ def test_sparse_and_modal_solvers_agree():
                      h_dot=lambda t: -2e-5 * np.cos(t))
     two = GapProfile2D(h=lambda t, z: one.h(t) + 0.0 * z, h_dot=lambda t, z: one.h_dot(t) + 0.0 * z)
     motion = Motion(omega_a=0.8, omega_b=-0.3)
-    modal = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=32, profile=one).as_tuple())
-    sparse = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=32, profile=two).as_tuple())
+    modal = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=32, profile=one).as_tuple())
+    sparse = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=32, profile=two).as_tuple())
     assert np.all(np.abs(sparse - modal) <= 1e-10 * np.abs(modal).max())
 
 
@@ -241,12 +241,12 @@ def test_user_gap_is_the_thin_gap():
     delta, eps = annulus.delta, annulus.eps
     still = GapProfile2D(h=lambda t, z: delta - eps * np.cos(t) + 0.0 * z)
     rotation = Motion(omega_a=0.8, omega_b=-0.3)
-    thin = np.array(reynolds2d_forces(annulus, rotation, FLUID, n=64, n_axial=32).as_tuple())
-    user = np.array(reynolds2d_forces(annulus, rotation, FLUID, n=64, n_axial=32, profile=still).as_tuple())
+    thin = np.array(reynolds2d_forces(annulus, rotation, OIL, n=64, n_axial=32).as_tuple())
+    user = np.array(reynolds2d_forces(annulus, rotation, OIL, n=64, n_axial=32, profile=still).as_tuple())
     assert np.all(np.abs(user - thin) <= 1e-10 * np.abs(thin).max())
     moving = GapProfile2D(h=still.h, h_dot=lambda t, z: -2e-5 * np.cos(t) + 0.0 * z)
-    thin = reynolds2d_forces(annulus, Motion(eps_dot=2e-5), FLUID, n=64, n_axial=32).f_eps
-    user = reynolds2d_forces(annulus, Motion(), FLUID, n=64, n_axial=32, profile=moving).f_eps
+    thin = reynolds2d_forces(annulus, Motion(eps_dot=2e-5), OIL, n=64, n_axial=32).f_eps
+    user = reynolds2d_forces(annulus, Motion(), OIL, n=64, n_axial=32, profile=moving).f_eps
     assert user == pytest.approx(thin, rel=1e-7)  # measured 1.6e-8
 
 
@@ -255,8 +255,8 @@ def test_user_gap_is_the_thin_gap():
 def test_long_bearing_limit_is_the_one_dimensional_solver(kappa, motion):
     """L/a = 1e12: the end corrections are O(a/L) = 1e-12; the modal solve must not lose it to rounding."""
     annulus = Annulus.from_kappa(A, B, kappa, 1e12 * A)
-    one_d = np.array(reynolds_forces(annulus, motion, FLUID, n=64).as_tuple())
-    two_d = np.array(reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=32).as_tuple())
+    one_d = np.array(reynolds_forces(annulus, motion, OIL, n=64).as_tuple())
+    two_d = np.array(reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=32).as_tuple())
     assert np.all(np.abs(two_d - one_d) <= 1e-10 * np.abs(one_d).max())
 
 
@@ -267,8 +267,8 @@ def test_long_bearing_ends_remove_a_fixed_amount(kappa):
     deficit = []
     for length_over_a in lengths:
         annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
-        inf = reynolds_forces(annulus, Motion(omega_a=1.0), FLUID).f_chi
-        fin = reynolds2d_forces(annulus, Motion(omega_a=1.0), FLUID, n=128, n_axial=64, extrapolate=True).f_chi
+        inf = reynolds_forces(annulus, Motion(omega_a=1.0), OIL).f_chi
+        fin = reynolds2d_forces(annulus, Motion(omega_a=1.0), OIL, n=128, n_axial=64, extrapolate=True).f_chi
         deficit.append(1.0 - fin / inf)
     assert abs(np.polyfit(np.log(lengths), np.log(deficit), 1)[0] + 1.0) < 0.02
 
@@ -284,8 +284,8 @@ def test_short_bearing_limit(kappa, motion):
     """
     length_over_a = 0.2
     annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
-    ref = np.array(short_bearing_forces(annulus, motion, FLUID).as_tuple())
-    got = np.array(reynolds2d_forces(annulus, motion, FLUID, n=256, n_axial=16, extrapolate=True).as_tuple())
+    ref = np.array(short_bearing_forces(annulus, motion, OIL).as_tuple())
+    got = np.array(reynolds2d_forces(annulus, motion, OIL, n=256, n_axial=16, extrapolate=True).as_tuple())
     bound = 0.3 * length_over_a**2 / (1.0 - kappa**2)
     assert np.all(np.abs(got - ref) <= bound * np.abs(ref) + 1e-12 * np.abs(ref).max())
 
@@ -300,8 +300,8 @@ def test_short_bearing_correction_is_second_order(kind):
     dev = []
     for length_over_a in lengths:
         annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
-        ref = short_bearing_forces(annulus, motion, FLUID).as_tuple()[index]
-        got = reynolds2d_forces(annulus, motion, FLUID, n=256, n_axial=16, extrapolate=True).as_tuple()[index]
+        ref = short_bearing_forces(annulus, motion, OIL).as_tuple()[index]
+        got = reynolds2d_forces(annulus, motion, OIL, n=256, n_axial=16, extrapolate=True).as_tuple()[index]
         dev.append(abs(got / ref - 1.0))
     assert abs(np.polyfit(np.log(lengths), np.log(dev), 1)[0] - 2.0) < 0.05
 
@@ -322,8 +322,8 @@ def test_small_eccentricity_closed_form(length_over_a):
     exact = small_eccentricity_factor(length_over_a)
     for kappa, motion, index in ((0.0, Motion(eps_dot=1.0), 0), (1e-4, Motion(omega_a=1.0), 1)):
         annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
-        inf = closed_form_forces(annulus, motion, FLUID).as_tuple()[index]
-        fin = reynolds2d_forces(annulus, motion, FLUID, n=128, n_axial=64, extrapolate=True).as_tuple()[index]
+        inf = closed_form_forces(annulus, motion, OIL).as_tuple()[index]
+        fin = reynolds2d_forces(annulus, motion, OIL, n=128, n_axial=64, extrapolate=True).as_tuple()[index]
         # extrapolated: measured 1e-6 or less at (128, 64); kappa = 1e-4 adds O(kappa^2)
         assert abs(fin / inf - exact) < 2e-6
 
@@ -335,35 +335,35 @@ def test_poiseuille_torque_is_minus_half_eps_f_chi(kappa):
     """Thin gap, any length: -(a/2) int oint h p_theta = (a/2) int oint h_theta p = -(eps/2) f_chi."""
     annulus = Annulus.from_kappa(A, B, kappa, L)
     motion = Motion(omega_a=1.3, omega_b=0.4)
-    f = reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=32)
+    f = reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=32)
     zeta = math.sqrt(annulus.one_minus_kappa * (1 + kappa))
-    couette = FLUID.mu * A**3 * L * (motion.w_b - motion.w_a) * 2 * math.pi / (annulus.delta * zeta)
+    couette = OIL.mu * A**3 * L * (motion.w_b - motion.w_a) * 2 * math.pi / (annulus.delta * zeta)
     assert f.T_a - couette == pytest.approx(-0.5 * annulus.eps * f.f_chi, rel=1e-11)
 
 
 @pytest.mark.parametrize("kappa", [0.3, 0.95])
 def test_linear_in_the_velocities(kappa, rng):
     annulus = Annulus.from_kappa(A, B, kappa, L)
-    units = [np.array(reynolds2d_forces(annulus, m, FLUID, n=32, n_axial=16).as_tuple())
+    units = [np.array(reynolds2d_forces(annulus, m, OIL, n=32, n_axial=16).as_tuple())
              for m in (Motion(eps_dot=1.0), Motion(omega_a=1.0), Motion(omega_b=1.0))]
     for _ in range(3):
         eps_dot, chi_dot, omega_a, omega_b = rng.normal(size=4) * (1e-4, 1.0, 1.0, 1.0)
         motion = Motion(eps_dot=eps_dot, chi_dot=chi_dot, omega_a=omega_a, omega_b=omega_b)
-        got = np.array(reynolds2d_forces(annulus, motion, FLUID, n=32, n_axial=16).as_tuple())
+        got = np.array(reynolds2d_forces(annulus, motion, OIL, n=32, n_axial=16).as_tuple())
         want = eps_dot * units[0] + motion.w_a * units[1] + motion.w_b * units[2]
         assert np.all(np.abs(got - want) <= 1e-12 * np.abs(want).max())
 
 
 def test_rigid_rotation_carries_no_load():
     annulus = Annulus.from_kappa(A, B, 0.7, L)
-    f = reynolds2d_forces(annulus, Motion(chi_dot=2.0, omega_a=2.0, omega_b=2.0), FLUID)
+    f = reynolds2d_forces(annulus, Motion(chi_dot=2.0, omega_a=2.0, omega_b=2.0), OIL)
     assert f.as_tuple() == (0.0, 0.0, 0.0)
 
 
 def test_pressure_is_mirror_symmetric_and_theta_antisymmetric():
     """Rotation of the thin gap: p(theta, z) = p(theta, -z) and p(-theta, z) = -p(theta, z) (p_end = 0)."""
     annulus = Annulus.from_kappa(A, B, 0.6, L)
-    film = reynolds2d_pressure(annulus, Motion(omega_a=1.0), FLUID, n=64, n_axial=32, clustering=0.0)
+    film = reynolds2d_pressure(annulus, Motion(omega_a=1.0), OIL, n=64, n_axial=32, clustering=0.0)
     scale = np.abs(film.p).max()
     assert np.allclose(film.p, film.p[::-1], atol=1e-13 * scale, rtol=0)
     assert np.allclose(film.z, -film.z[::-1], atol=1e-15, rtol=0)
@@ -379,8 +379,8 @@ def test_tilt_one_way_or_the_other_is_the_mirror_image():
     """z -> -z maps a tilt to its opposite: same forces, mirrored pressure."""
     annulus = Annulus.from_kappa(A, B, 0.5, L)
     tilt = 0.3 * annulus.delta / L
-    up = reynolds2d_pressure(annulus, Motion(omega_a=1.0), FLUID, n=32, n_axial=16, profile=tilted_gap(annulus, tilt))
-    down = reynolds2d_pressure(annulus, Motion(omega_a=1.0), FLUID, n=32, n_axial=16,
+    up = reynolds2d_pressure(annulus, Motion(omega_a=1.0), OIL, n=32, n_axial=16, profile=tilted_gap(annulus, tilt))
+    down = reynolds2d_pressure(annulus, Motion(omega_a=1.0), OIL, n=32, n_axial=16,
                                profile=tilted_gap(annulus, -tilt))
     scale = np.abs(up.forces.as_tuple()).max()
     assert np.allclose(up.forces.as_tuple(), down.forces.as_tuple(), rtol=0, atol=1e-11 * scale)
@@ -390,12 +390,12 @@ def test_tilt_one_way_or_the_other_is_the_mirror_image():
 def test_small_tilt_changes_the_forces_at_second_order():
     """The force is even in the tilt (the mirror image above): the change from a tilt t is O(t^2)."""
     annulus = Annulus.from_kappa(A, B, 0.5, L)
-    base = reynolds2d_forces(annulus, Motion(omega_a=1.0), FLUID, n=32, n_axial=16,
+    base = reynolds2d_forces(annulus, Motion(omega_a=1.0), OIL, n=32, n_axial=16,
                              profile=tilted_gap(annulus, 0.0)).f_chi
     changes = []
     tilts = np.array([0.05, 0.1, 0.2]) * annulus.delta / L
     for t in tilts:
-        f = reynolds2d_forces(annulus, Motion(omega_a=1.0), FLUID, n=32, n_axial=16, profile=tilted_gap(annulus, t))
+        f = reynolds2d_forces(annulus, Motion(omega_a=1.0), OIL, n=32, n_axial=16, profile=tilted_gap(annulus, t))
         changes.append(abs(f.f_chi - base))
     assert abs(np.polyfit(np.log(tilts), np.log(changes), 1)[0] - 2.0) < 0.05
 
@@ -404,12 +404,12 @@ def test_untilted_profile_is_the_thin_gap():
     """Rotation to rounding; the squeeze to its tabulated flux's O(dpsi^4) (measured 4e-7 at N = 32)."""
     annulus = Annulus.from_kappa(A, B, 0.8, L)
     rotation = Motion(omega_a=1.0, omega_b=0.3)
-    thin = np.array(reynolds2d_forces(annulus, rotation, FLUID, n=32, n_axial=16).as_tuple())
-    tilted = np.array(reynolds2d_forces(annulus, rotation, FLUID, n=32, n_axial=16,
+    thin = np.array(reynolds2d_forces(annulus, rotation, OIL, n=32, n_axial=16).as_tuple())
+    tilted = np.array(reynolds2d_forces(annulus, rotation, OIL, n=32, n_axial=16,
                                         profile=tilted_gap(annulus, 0.0)).as_tuple())
     assert np.all(np.abs(tilted - thin) <= 1e-10 * np.abs(thin).max())
-    thin = reynolds2d_forces(annulus, Motion(eps_dot=1e-5), FLUID, n=32, n_axial=16).f_eps
-    tilted = reynolds2d_forces(annulus, Motion(), FLUID, n=32, n_axial=16,
+    thin = reynolds2d_forces(annulus, Motion(eps_dot=1e-5), OIL, n=32, n_axial=16).f_eps
+    tilted = reynolds2d_forces(annulus, Motion(), OIL, n=32, n_axial=16,
                                profile=tilted_gap(annulus, 0.0, eps_dot=1e-5)).f_eps
     assert tilted == pytest.approx(thin, rel=2e-6)
 
@@ -425,8 +425,8 @@ def test_ends_matter_less_as_the_gap_closes():
     for zeta in zetas:
         annulus = Annulus(a=A, b=B, length=L, one_minus_kappa=zeta**2 / (1 + math.sqrt(1 - zeta**2)))
         for motion, index, out in ((Motion(eps_dot=1.0), 0, squeeze), (Motion(omega_a=1.0), 1, rotation)):
-            inf = closed_form_forces(annulus, motion, FLUID).as_tuple()[index]
-            fin = reynolds2d_forces(annulus, motion, FLUID, n=256, n_axial=32, extrapolate=True).as_tuple()[index]
+            inf = closed_form_forces(annulus, motion, OIL).as_tuple()[index]
+            fin = reynolds2d_forces(annulus, motion, OIL, n=256, n_axial=32, extrapolate=True).as_tuple()[index]
             out.append(1.0 - fin / inf)
     assert abs(np.polyfit(np.log(zetas), np.log(squeeze), 1)[0] - 1.0) < 0.02
     steps = np.diff(np.array(rotation) / zetas)
@@ -438,15 +438,15 @@ def test_finite_and_bounded_at_extreme_eccentricity():
     grid's error at N = 64 was measured below 1e-6, so the factor must lie in (1 - 1e-5, 1)."""
     annulus = Annulus(a=A, b=B, length=L, one_minus_kappa=1e-12)
     for motion, index in ((Motion(eps_dot=1.0), 0), (Motion(omega_a=1.0), 1)):
-        ratio = (reynolds2d_forces(annulus, motion, FLUID, n=64, n_axial=16).as_tuple()[index]
-                 / closed_form_forces(annulus, motion, FLUID).as_tuple()[index])
+        ratio = (reynolds2d_forces(annulus, motion, OIL, n=64, n_axial=16).as_tuple()[index]
+                 / closed_form_forces(annulus, motion, OIL).as_tuple()[index])
         assert 1.0 - 1e-5 < ratio < 1.0
 
 
 def _near_contact_factor(motion, index, **grid):
     annulus = Annulus(a=A, b=B, length=L, one_minus_kappa=1e-6)
-    return (reynolds2d_forces(annulus, motion, FLUID, **grid).as_tuple()[index]
-            / closed_form_forces(annulus, motion, FLUID).as_tuple()[index])
+    return (reynolds2d_forces(annulus, motion, OIL, **grid).as_tuple()[index]
+            / closed_form_forces(annulus, motion, OIL).as_tuple()[index])
 
 
 @pytest.mark.parametrize(("motion", "index"), [(Motion(eps_dot=1.0), 0), (Motion(omega_a=1.0), 1)],
@@ -530,8 +530,8 @@ def test_axial_grid_is_graded_toward_the_end():
 
 def test_half_sommerfeld_above_the_film_is_the_full_film():
     annulus = Annulus.from_kappa(A, B, 0.6, L)
-    full = reynolds2d_forces(annulus, MOTIONS["combined"], FLUID)
-    cav = reynolds2d_forces(annulus, MOTIONS["combined"], FLUID, cavitation="half-sommerfeld", p_end=1e6,
+    full = reynolds2d_forces(annulus, MOTIONS["combined"], OIL)
+    cav = reynolds2d_forces(annulus, MOTIONS["combined"], OIL, cavitation="half-sommerfeld", p_end=1e6,
                             p_cav=-1e6)
     assert cav.as_tuple() == pytest.approx(full.as_tuple(), rel=1e-13)
 
@@ -544,8 +544,8 @@ def test_half_sommerfeld_short_bearing_is_the_pi_film():
     """
     kappa, length_over_a = 0.6, 0.2
     annulus = Annulus.from_kappa(A, B, kappa, length_over_a * A)
-    delta, mu = annulus.delta, FLUID.mu
-    got = reynolds2d_forces(annulus, Motion(omega_a=1.0), FLUID, n=256, n_axial=16, cavitation="half-sommerfeld",
+    delta, mu = annulus.delta, OIL.mu
+    got = reynolds2d_forces(annulus, Motion(omega_a=1.0), OIL, n=256, n_axial=16, cavitation="half-sommerfeld",
                             extrapolate=True)
 
     def r_over_h3(t):  # R/h^3 for W_a = 1: 6 mu h_theta / h^3
@@ -566,11 +566,11 @@ def test_half_sommerfeld_is_second_order_when_the_film_ruptures_inside_cells():
     cell by its fraction above p_cav keeps f_chi second order in N (slope -2 +- 0.15 against N = 4096)."""
     annulus = Annulus.from_kappa(A, B, 0.6, L)
     motion = Motion(omega_a=1.0)
-    p_cav = -0.3 * np.abs(reynolds2d_pressure(annulus, motion, FLUID, n=128, n_axial=32).p).max()
+    p_cav = -0.3 * np.abs(reynolds2d_pressure(annulus, motion, OIL, n=128, n_axial=32).p).max()
     options = {"n_axial": 32, "cavitation": "half-sommerfeld", "p_cav": p_cav}
-    ref = reynolds2d_forces(annulus, motion, FLUID, n=4096, **options).f_chi
+    ref = reynolds2d_forces(annulus, motion, OIL, n=4096, **options).f_chi
     sizes = np.array([32, 64, 128, 256])
-    errors = [abs(reynolds2d_forces(annulus, motion, FLUID, n=n, **options).f_chi / ref - 1) for n in sizes]
+    errors = [abs(reynolds2d_forces(annulus, motion, OIL, n=n, **options).f_chi / ref - 1) for n in sizes]
     assert abs(np.polyfit(np.log(sizes), np.log(errors), 1)[0] + 2.0) < 0.15
 
 
@@ -594,7 +594,7 @@ def test_half_sommerfeld_is_second_order_when_the_film_ruptures_inside_cells():
 def test_bad_input(options, match):
     annulus = Annulus.from_kappa(A, B, 0.5, L)
     with pytest.raises(ValueError, match=match):
-        reynolds2d_forces(annulus, Motion(omega_a=1.0), FLUID, **options)
+        reynolds2d_forces(annulus, Motion(omega_a=1.0), OIL, **options)
 
 
 def test_area_changing_rate_is_refused():
@@ -602,7 +602,7 @@ def test_area_changing_rate_is_refused():
     bad = GapProfile2D(h=lambda t, z: annulus.delta - annulus.eps * np.cos(t) + 0 * z,
                        h_dot=lambda t, z: 1e-5 + 0 * t + 0 * z)
     with pytest.raises(ValueError, match="conserve each cross-section"):
-        reynolds2d_forces(annulus, Motion(), FLUID, profile=bad)
+        reynolds2d_forces(annulus, Motion(), OIL, profile=bad)
 
 
 def test_tilt_that_touches_is_refused():

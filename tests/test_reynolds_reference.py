@@ -34,14 +34,15 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from lubrication import Annulus, Fluid, Motion, reynolds_forces
+from lubrication import Annulus, Motion, reynolds_forces
 from lubrication.reynolds_kernels import eccentric_gap
+
+from apparatus import A, B, OIL
 
 # quad warns when rounding stops it short of 1e-13 on integrands that vanish by symmetry;
 # the comparisons, at 1e-10, are what decide
 pytestmark = pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
 
-FLUID = Fluid(nu=2e-4, rho=960.0)
 QUAD = {"epsabs": 0.0, "epsrel": 1e-13, "limit": 400}
 
 
@@ -100,8 +101,7 @@ def reference_forces(a, b, kappa, mu, length, eps_dot, w_a, w_b):
     return np.array([f_eps, f_chi, t_a]), np.array([force_terms, force_terms, torque_terms])
 
 
-GEOMETRIES = [(0.008, 0.01125, 0.0), (0.008, 0.01125, 0.3), (0.008, 0.01125, 0.9),
-              (0.008, 0.01125, 0.99), (1.0, 1.01, 0.6), (1.0, 3.0, 0.8)]
+GEOMETRIES = [(A, B, 0.0), (A, B, 0.3), (A, B, 0.9), (A, B, 0.99), (1.0, 1.01, 0.6), (1.0, 3.0, 0.8)]
 MOTIONS = {"squeeze": (1e-4, 0.0, 0.0), "inner": (0.0, 1.0, 0.0), "outer": (0.0, 0.0, 1.0),
            "combined": (-3e-5, 1.5, -0.7)}
 
@@ -111,9 +111,9 @@ MOTIONS = {"squeeze": (1e-4, 0.0, 0.0), "inner": (0.0, 1.0, 0.0), "outer": (0.0,
 def test_exact_gap_kernel_matches_adaptive_quadrature(a, b, kappa, motion):
     eps_dot, w_a, w_b = MOTIONS[motion]
     annulus = Annulus.from_kappa(a, b, kappa, length=0.1)
-    got = np.array(reynolds_forces(annulus, Motion(eps_dot=eps_dot, omega_a=w_a, omega_b=w_b), FLUID,
+    got = np.array(reynolds_forces(annulus, Motion(eps_dot=eps_dot, omega_a=w_a, omega_b=w_b), OIL,
                                    profile="eccentric", n=128, points_per_cell=2).as_tuple())
-    ref, terms = reference_forces(a, b, kappa, FLUID.mu, 0.1, eps_dot, w_a, w_b)
+    ref, terms = reference_forces(a, b, kappa, OIL.mu, 0.1, eps_dot, w_a, w_b)
     err = np.abs(got - ref) / terms
     assert np.all(err < 1e-10), (err, got, ref)
 

@@ -41,7 +41,10 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 from dynamics.trajectory import PHASE_CODES
-from validation.rough_speeds import speed_table, speed_table_markdown
+from validation.reports.rough_speeds import speed_table_markdown
+from validation.rough_speeds import speed_table
+
+from apparatus import A, B
 
 FIG7 = ReducedParams(s=0.25, upsilon=1.0, mu_ratio=1.0)  # figures 7 and 8: Upsilon = mu_ = 1, s = 1/4
 KAPPA_STAR = 0.98  # figures 7 and 8
@@ -177,9 +180,8 @@ def test_a_seed_gives_the_same_surfaces_and_another_seed_others():
 
 def test_rolled_length_is_an_angle_on_each_surface():
     mean = ContactParams(KAPPA_STAR, 0.1)
-    rough = RoughContact.from_rolled_length(mean, 0.5, 0.001, 0.008, 0.01125, seed=2)
-    assert rough.inner.correlation == pytest.approx(0.001 / 0.008) and rough.outer.correlation == pytest.approx(
-        0.001 / 0.01125)
+    rough = RoughContact.from_rolled_length(mean, 0.5, 0.001, A, B, seed=2)
+    assert rough.inner.correlation == pytest.approx(0.001 / A) and rough.outer.correlation == pytest.approx(0.001 / B)
 
 
 # -- the contact equations on the moving constraint ----------------------------------------

@@ -18,6 +18,8 @@ from dynamics.scenes import (
     resolved_toml,
 )
 
+from apparatus import A, L
+
 # A physical scene and a dimensionless [groups] scene, as mappings to edit.
 PHYSICAL = {
     "apparatus": {"preset": "steel"},
@@ -88,7 +90,7 @@ def test_unit_strings_convert_to_si(override, read, expected):
 
 def test_rho_a_gives_the_mass_of_a_solid_inner_cylinder():
     scene = parse_scene(edited(PHYSICAL, apparatus={"rho_a": "7.85 g/cm^3"}))
-    assert scene.apparatus.m_a == pytest.approx(7850.0 * math.pi * 0.008**2 * 0.1035)
+    assert scene.apparatus.m_a == pytest.approx(7850.0 * math.pi * A**2 * L)
 
 
 def bad(case, scene, *words):

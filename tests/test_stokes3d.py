@@ -16,7 +16,8 @@ from lubrication.finite_length import finite_length_factors
 from lubrication.stokes import stokes_resistance
 from lubrication.stokes3d import extruded_mesh, stokes3d_resistance
 
-A, B, L = 0.008, 0.01125, 0.1035
+from apparatus import A, B, L
+
 NAMES = ("f_eps_per_eps_dot", "f_chi_per_w_a", "t_a_per_w_a", "f_chi_per_w_b", "t_a_per_w_b")
 
 

@@ -44,6 +44,8 @@ from lubrication.stokes_exact import (
     stokes_exact_resistance,
 )
 
+from apparatus import A, B, L, OIL
+
 # ---------------------------------------------------------------------------
 # High-precision reference: the unsimplified solution, in decimal arithmetic
 # ---------------------------------------------------------------------------
@@ -594,22 +596,21 @@ def test_signs_and_identities(log_d, kappa, a):
 # The Python face
 # ---------------------------------------------------------------------------
 
-ANNULUS = Annulus.from_kappa(0.008, 0.01125, 0.7, length=0.1035)
-FLUID = Fluid(nu=2e-4, rho=960.0)
+ANNULUS = Annulus.from_kappa(A, B, 0.7, length=L)
 
 
 def test_forces_combine_the_coefficients():
     """stokes_exact_forces = length x coefficients x (eps', W_a, W_b); chi' enters through W_a, W_b only."""
     motion = Motion(eps_dot=-3e-5, chi_dot=0.4, omega_a=1.5, omega_b=-0.7)
-    f = stokes_exact_forces(ANNULUS, motion, FLUID)
+    f = stokes_exact_forces(ANNULUS, motion, OIL)
     assert f.model == "stokes-exact"
-    r = exact_resistance(ANNULUS, FLUID)
+    r = exact_resistance(ANNULUS, OIL)
     assert isinstance(r, ExactResistance) and r.NAMES == EXACT_NAMES
     w_a, w_b = 1.5 - 0.4, -0.7 - 0.4
     expected = (r.f_eps_per_eps_dot * motion.eps_dot, r.f_chi_per_w_a * w_a + r.f_chi_per_w_b * w_b,
                 r.t_a_per_w_a * w_a + r.t_a_per_w_b * w_b)
     np.testing.assert_allclose(f.as_tuple(), expected, rtol=1e-14)
-    unit = stokes_exact_resistance(ANNULUS.a, ANNULUS.delta, FLUID.mu, ANNULUS.kappa,
+    unit = stokes_exact_resistance(ANNULUS.a, ANNULUS.delta, OIL.mu, ANNULUS.kappa,
                                    ANNULUS.one_minus_kappa)
     np.testing.assert_allclose(r.as_tuple(), np.array(unit) * ANNULUS.length, rtol=1e-15)
     assert r.resistance().as_tuple() == r.as_tuple()[:5]
@@ -635,16 +636,16 @@ def test_kernel_agrees_with_the_closed_forms_to_first_order_in_the_gap():
 ])
 def test_bad_input(annulus, match):
     with pytest.raises(ValueError, match=match):
-        stokes_exact_forces(annulus, Motion(), FLUID)
+        stokes_exact_forces(annulus, Motion(), OIL)
     with pytest.raises(ValueError, match=match):
-        exact_resistance(annulus, FLUID)
+        exact_resistance(annulus, OIL)
 
 
 def test_domain_edges_accepted():
     """The ends of the stated domain are accepted (b = 11 a rounds (b - a)/a to 10 + 1 ulp for some a)."""
     for annulus in (Annulus(a=0.1, b=1.1), Annulus(a=1.0, b=1.0001),
                     Annulus.from_kappa(1.0, 1.4, 1.0 - 1e-9)):
-        assert np.all(np.isfinite(exact_resistance(annulus, FLUID).as_tuple()))
+        assert np.all(np.isfinite(exact_resistance(annulus, OIL).as_tuple()))
 
 
 # ---------------------------------------------------------------------------

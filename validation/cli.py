@@ -50,8 +50,8 @@ def _return_freed_blocks_to_the_system() -> None:
     freed when it ends, but glibc keeps blocks below a threshold it raises as
     it goes (up to 32 MiB) inside its heap, where later small allocations pin
     them. Measured on ``snail validate --quick``: a peak of 412 MB without this
-    and 394 MB with it (set before the checks' imports), for 1-2 s more.
-    Elsewhere than glibc, nothing changes.
+    and 394 MB with it (set before the checks' imports), at a small cost in
+    time. Elsewhere than glibc, nothing changes.
     """
     try:
         mallopt = ctypes.CDLL(None).mallopt
@@ -93,7 +93,7 @@ def _corrections(args) -> int:
     from numerics.folder import writable_folder
 
     from .checks import Check
-    from .corrections import run
+    from .reports.corrections import run
 
     writable_folder(args.output)  # an unusable path is bad input, found before the study runs
     records, _, text = run(args.output, quick=args.quick)

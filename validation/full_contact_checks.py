@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -42,7 +41,6 @@ from dynamics.initial import Initial
 from dynamics.simulation import simulate
 from dynamics.trajectory import Trajectory
 from lubrication.registry import kernel_model
-from numerics.files import save_figure
 
 from .checks import Check, absolute, at_least, at_most, relative
 from .contact_checks import (
@@ -54,7 +52,7 @@ from .contact_checks import (
     SANDPAPER_SLOPE_DEG,
 )
 
-__all__ = ["limit_errors", "run"]
+__all__ = ["compute", "limit_errors", "reduced_releases"]
 
 S = 0.25  # figures 7-9
 MU_RATIO = 1.5  # a real device has mu_ > 1 (figures 7-9 use mu_ = 1, which only the reduced model allows)
@@ -129,36 +127,20 @@ def apparatus_speeds(quick: bool) -> dict:
     return out
 
 
-def _figure(path: Path, runs: dict) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), sharex=True)
-    for ax, (branch, psi) in zip(axes, BRANCHES.items()):
-        reduced = simulate(ReducedParams(S, 1.0, MU_RATIO), RELEASE, 60.0, contact=ContactParams(KAPPA_STAR, psi))
-        r = reduced.columns
-        ax.plot(reduced.t, r["omega_b"], "k-", lw=2.5, alpha=0.35, label="reduced (section 5), Omega_b")
-        ax.plot(reduced.t, r["omega_a"], "k--", lw=2.5, alpha=0.35, label="reduced, Omega_a")
-        for ratio, trajectory in runs[branch].items():
-            c = trajectory.columns
-            keep = c["t_tau"] <= 60.0
-            line, = ax.plot(c["t_tau"][keep], c["omega_b"][keep] * trajectory.tau, lw=1, label=f"full, delta/a = {ratio:g}")
-            ax.plot(c["t_tau"][keep], c["omega_a"][keep] * trajectory.tau, "--", lw=1, color=line.get_color())
-        ax.set_title(f"psi = {psi:g} ({branch})")
-        ax.set_xlabel("t / tau")
-    axes[0].set_ylabel("Omega tau")
-    axes[0].legend(fontsize=7)
-    fig.suptitle(f"Figure 7's release (s = {S:g}, Upsilon = 1, mu_ = {MU_RATIO:g}, kappa* = {KAPPA_STAR:g}): "
-                 "full model with contact against section 5", fontsize=9)
-    save_figure(path, fig)
-    plt.close(fig)
+def reduced_releases() -> dict[str, Trajectory]:
+    """Figure 7's release on each branch in the reduced model with contact (section 5), over 60 tau:
+    what the figure draws the full model's releases against."""
+    return {branch: simulate(ReducedParams(S, 1.0, MU_RATIO), RELEASE, 60.0, contact=ContactParams(KAPPA_STAR, psi))
+            for branch, psi in BRANCHES.items()}
 
 
-def run(outdir, quick: bool = False):
-    """All full-model contact checks; returns (checks, figure file names, a markdown paragraph)."""
-    outdir = Path(outdir)
+def compute(quick: bool = False) -> dict:
+    """Every run of the group and its checks; the figure and the paragraph read the runs by name.
+
+    Returns ``checks``, the log-log ``slopes`` of the limit, the figure 7 releases ``runs`` per branch
+    and delta/a, the ``stick_slip`` run with its ``phases`` and a run that locks ``once``, the
+    apparatus' ``speeds``, and (full form only) the section 5 runs of the figure, ``reduced``.
+    """
     checks: list[Check] = []
     slopes = {}
     for branch, psi in BRANCHES.items():
@@ -201,31 +183,8 @@ def run(outdir, quick: bool = False):
                               speeds["stokes"]["v"] / speeds["v_reduced"], 1.0,
                               f"(6.1) with the exact fixed point: {1e3 * speeds['v_reduced']:.3g} mm/s"))
 
-    figures = []
+    result = {"checks": checks, "slopes": slopes, "runs": runs, "stick_slip": stick_slip, "phases": phases,
+              "once": once, "speeds": speeds}
     if not quick:
-        _figure(outdir / "full_contact_release.png", runs)
-        figures.append("full_contact_release.png")
-    return checks, figures, _paragraph(slopes, runs, stick_slip, phases, once, speeds)
-
-
-def _paragraph(slopes, runs, stick_slip, phases, once, speeds) -> str:
-    """The group's summary, every number in it measured by this run."""
-    ratios = ", ".join(f"{name} {s:.3f} ({err:.2g} at delta/a = {RATIOS[-1]:g})" for name, (s, err) in slopes.items())
-    impact = {branch: runs[branch][RATIOS[0]].info["switches"][0]["t"] / runs[branch][RATIOS[0]].tau
-              for branch in runs}
-    text = (
-        "Contact in the full model is a unilateral constraint at eps* = delta - sigma with Coulomb friction at the "
-        "single contact point and a plastic impact (dynamics.contact.full). Its steady rolling states approach "
-        f"section 5's (5.6)-(5.11) at first order in delta/a: log-log slopes {ratios}. Figure 7's release at "
-        f"delta/a = 0.01 touches at t = {impact['sliding']:.4g} tau and settles on the full model's own fixed point "
-        "(figure: the rates against the reduced hybrid run). Just above the onset of sliding (psi = "
-        f"{STICK_SLIP_PSI}) the rocking pair switched {len(phases)} times between locked and sliding in "
-        f"{stick_slip.steps} steps, against {once.steps} for a run that locks once."
-    )
-    v_red = speeds["v_reduced"]
-    parts = [f"{name} forces {1e3 * speeds[name]['v']:.2f} mm/s ({speeds[name]['v'] / v_red:.3f} of it, "
-             f"{speeds[name]['phase']})" for name in ("closed-form", "stokes") if name in speeds]
-    text += (f" The steel apparatus (delta/a = {speeds['delta_over_a']:.2f}) in 500 cSt oil at "
-             f"{SANDPAPER_SLOPE_DEG:g} degrees with sigma = 50 micrometres: (6.1) with the exact fixed point gives "
-             f"{1e3 * v_red:.2f} mm/s ({speeds['phase_reduced']}); the full model with " + "; with ".join(parts) + ".")
-    return text
+        result["reduced"] = reduced_releases()
+    return result

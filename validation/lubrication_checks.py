@@ -30,7 +30,8 @@ from lubrication.geometry import Resistance
 
 from .checks import Check, absolute, relative
 
-__all__ = ["KAPPAS", "run", "sommerfeld_pressure", "uniform_grid_rate", "pressure_order"]
+__all__ = ["CONVERGENCE_KAPPAS", "KAPPAS", "checks_of", "convergence_errors", "sommerfeld_pressure", "uniform_grid_rate",
+           "pressure_order"]
 
 A, B, LENGTH = 0.008, 0.01125, 0.1035  # the paper's apparatus (Table 2), m
 FLUID = Fluid(nu=2.0e-4, rho=960.0)  # 200 cSt silicone oil
@@ -119,33 +120,22 @@ def pressure_order(kappa: float, points_per_cell: int, ns=(32, 64, 128, 256)) ->
     return order, errors
 
 
-def convergence_figure(path) -> None:
-    """Error of the Reynolds solver against N, both grids, for several kappa."""
-    import matplotlib
+#: kappa of the convergence figure.
+CONVERGENCE_KAPPAS = (0.5, 0.9, 0.99, 0.9999)
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
-    from numerics.files import save_figure
-
+def convergence_errors() -> dict:
+    """Largest relative error of the resistance coefficients against N on both grids, one Gauss point per
+    cell, for each of :data:`CONVERGENCE_KAPPAS`: ``{"ns": ns, "errors": {(kappa, grid): errors}}``
+    (errors floored at 1e-17 for a log scale)."""
     ns = np.unique(np.geomspace(8, 4096, 14).astype(int))
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    for kappa, colour in zip((0.5, 0.9, 0.99, 0.9999), ("C0", "C1", "C2", "C3")):
-        for grid, style in (("sommerfeld", "-o"), ("uniform", "--s")):
-            err = [max(_max_error(kappa, int(n), grid, 1), 1e-17) for n in ns]
-            ax.loglog(ns, err, style, color=colour, ms=3, label=f"{grid}, kappa={kappa:g}")
-    ax.set_xlabel("cells N (one Gauss point per cell)")
-    ax.set_ylabel("max relative error of the resistance coefficients")
-    ax.set_title("Reynolds solver against (2.5)-(2.7)")
-    ax.legend(fontsize=7, ncol=2)
-    ax.grid(True, which="major", alpha=0.3)
-    fig.tight_layout()
-    save_figure(path, fig, dpi=120)
-    plt.close(fig)
+    errors = {(kappa, grid): [max(_max_error(kappa, int(n), grid, 1), 1e-17) for n in ns]
+              for kappa in CONVERGENCE_KAPPAS for grid in ("sommerfeld", "uniform")}
+    return {"ns": ns, "errors": errors}
 
 
-def run(outdir, quick: bool = False):
-    """All lubrication checks; returns (checks, figure file names, a markdown paragraph)."""
+def checks_of() -> list[Check]:
+    """The closed forms, the uniform grid's exponential rate and the nodal pressure's order."""
     checks = reynolds_against_closed_forms()
     for kappa in (0.5, 0.9):
         rate, _, _ = uniform_grid_rate(kappa)
@@ -155,12 +145,4 @@ def run(outdir, quick: bool = False):
         order, _ = pressure_order(0.9, m)
         checks.append(absolute(f"nodal pressure convergence order, {m} Gauss point(s) per cell",
                                order, 2.0 * m, 0.2, "against Sommerfeld's pressure, kappa=0.9"))
-    figures = []
-    if not quick:
-        convergence_figure(outdir / "reynolds_convergence.png")
-        figures.append("reynolds_convergence.png")
-    text = ("The numerical Reynolds solver on the thin gap (B1) reproduces the five resistance "
-            "coefficients of (2.5)-(2.7) to rounding for every kappa up to 1 - 1e-6; the grid "
-            "uniform in the Sommerfeld angle keeps that accuracy with a few dozen cells where a "
-            "uniform theta grid needs N ~ 25/acosh(1/kappa).")
-    return checks, figures, text
+    return checks

@@ -29,8 +29,6 @@ run time against the reference it claims to meet.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from dynamics.app.auto import choose_equations, choose_forces
 from dynamics.apparatus import Apparatus, preset
 from dynamics.equations.limits import Limits
@@ -40,9 +38,9 @@ from lubrication.geometry import Annulus, Fluid, Motion, Resistance
 from lubrication.registry import kernel_model, resistance
 from lubrication.stokes import clear_cache, default_mesh
 
-from .checks import Check, absolute, at_least, at_most
+from .checks import absolute, at_least, at_most
 
-__all__ = ["run"]
+__all__ = ["compute"]
 
 THIN, APPARATUS = 0.01, 0.40625
 # One scene tolerance that separates the gaps: the closed forms were measured at 2.5e-2 (delta/a = 0.01)
@@ -112,9 +110,13 @@ def equations_error(delta: float) -> float:
                abs(r["one_minus_kappa"][-1] - f["one_minus_kappa"][-1]) / f["one_minus_kappa"][-1])
 
 
-def run(outdir, quick: bool = False) -> tuple[list[Check], list[str], str]:
-    """All checks of the automatic choice; returns (checks, figure file names, a markdown paragraph)."""
-    Path(outdir).mkdir(parents=True, exist_ok=True)
+def compute(quick: bool = False) -> dict:
+    """Every choice, its error now, and the checks of the automatic choice.
+
+    Returns ``checks``; the force choices ``thin``, ``wide`` and ``strict`` with their errors per kappa
+    (``thin_errors``, ...); the equations' choices ``eq_thin`` and ``eq_wide``; and the reduced
+    equations' trajectory errors at both gaps (``reduced_error``, ``reduced_wide_error``).
+    """
     kappas = (0.3, 0.95) if quick else (0.3, 0.7, 0.95, 0.985)
     thin, thin_errors = force_errors(FORCE_TOLERANCE, THIN, kappas)
     wide, wide_errors = force_errors(FORCE_TOLERANCE, APPARATUS, kappas)
@@ -145,15 +147,6 @@ def run(outdir, quick: bool = False) -> tuple[list[Check], list[str], str]:
                            reduced_wide_error, EQUATIONS_TOLERANCE, "so the full equations are needed"))
     checks.append(absolute(f"auto chose the full equations at delta/a {APPARATUS:g} (1 if so)",
                            float(eq_wide.model == "full"), 1.0, 0.0, f"chose {eq_wide.model}"))
-    paragraph = (
-        "The automatic choice (`dynamics.app.auto`) reads the stored speed-versus-accuracy study "
-        "(`benchmarks/accuracy.py`); here each choice is recomputed against the exact Stokes solution (or, "
-        "when that is the choice, a fresh finite-element Stokes solve) or a fresh trajectory. "
-        f"At a force tolerance of {FORCE_TOLERANCE:g} it picks {thin.model} at delta/a = {THIN:g} "
-        f"(largest error now {max(thin_errors.values()):.2e}, stored {thin.error:.2e}) and {wide.model} at "
-        f"{APPARATUS:g} (now {max(wide_errors.values()):.2e}); at 1e-4 it picks {strict.model} at {THIN:g} "
-        f"(now {max(strict_errors.values()):.2e}). At an equations tolerance of {EQUATIONS_TOLERANCE:g} it "
-        f"picks the {eq_thin.model} equations at {THIN:g} (trajectory error now {reduced_error:.2e}, stored "
-        f"{eq_thin.error:.2e}) and the {eq_wide.model} equations at {APPARATUS:g}, where the reduced "
-        f"equations' error is now {reduced_wide_error:.2e}.")
-    return checks, [], paragraph
+    return {"checks": checks, "thin": thin, "thin_errors": thin_errors, "wide": wide, "wide_errors": wide_errors,
+            "strict": strict, "strict_errors": strict_errors, "eq_thin": eq_thin, "eq_wide": eq_wide,
+            "reduced_error": reduced_error, "reduced_wide_error": reduced_wide_error}

@@ -21,7 +21,7 @@ from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
 from dynamics.simulation import simulate
 
-__all__ = ["SpeedRow", "speed_table", "speed_table_markdown"]
+__all__ = ["SpeedRow", "speed_table"]
 
 
 class SpeedRow(NamedTuple):
@@ -75,13 +75,3 @@ def speed_table(params: ReducedParams, mean: ContactParams, correlation: float, 
                              else 0.0, float(rates.mean()) / uniform, float(fluctuations.mean()),
                              float(switch_rates.mean()), len(stats)))
     return uniform, tuple(rows)
-
-
-def speed_table_markdown(uniform: float, rows) -> str:
-    """The table of :func:`speed_table` in markdown."""
-    lines = [f"uniform kappa* steady Omega_b (6.1): {uniform:.5g} / tau", "",
-             "| amplitude | <Omega_b> | spread (seeds) | / uniform | Omega_b fluctuation | switches/tau | seeds |",
-             "|---|---|---|---|---|---|---|"]
-    lines += [f"| {r.amplitude:g} | {r.mean:.5g} | {r.spread:.2g} | {r.ratio:.4f} | {r.fluctuation:.3g} | "
-              f"{r.switch_rate:.3g} | {r.seeds} |" for r in rows]
-    return "\n".join(lines)

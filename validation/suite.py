@@ -12,7 +12,8 @@ from lubrication.stokes import clear_cache
 from numerics.files import write_json, write_text
 from numerics.folder import held_signals
 
-from . import (
+from .checks import Check, Finding
+from .reports import (
     cavitation_checks,
     cavitation_trajectories,
     cavitation_transient,
@@ -26,12 +27,12 @@ from . import (
     stokes_trajectories,
     table3,
 )
-from .checks import Check, Finding
-from .paper_claims import claims_table
+from .reports.paper_claims import claims_table
 
 __all__ = ["GROUPS", "run_all"]
 
-# title -> module with run(outdir, quick) -> (checks, figure names, paragraph)
+# title -> the group's module in validation.reports, with run(outdir, quick) -> (checks, figure names,
+# paragraph); it presents the study of the module of the same name in validation, which computes and checks
 GROUPS = {
     "Reynolds solver against the lubrication closed forms": lubrication_checks,
     "Equations of motion: figures 2 and 3, section 3, the distinguished limit and the runaway":

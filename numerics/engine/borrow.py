@@ -5,9 +5,10 @@ assignment, argument and tuple member read is an atomic increment, paired with
 an atomic decrement where the variable dies. LLVM's reference-count pruning
 removes the pairs only in simple control flow; in the branchy code of a Radau
 step (Newton exits, rejected steps, events) it cannot. Counted on Van der Pol
-(mu = 1e3, rtol 1e-6): 466 atomic operations per step, 80 % of the loop's time
-under perf; 3.9 us per step with them, 1.0 us without (the driver's output rows
-are kept out of the loop's references likewise).
+(mu = 1e3, rtol 1e-6): 466 atomic operations per step, most of the loop's time
+under perf, so the loop runs without them (the engine's timings:
+``docs/site/performance.md``; the driver's output rows are kept out of the loop's
+references likewise).
 
 :func:`borrow` returns views of the same memory with no owner (a null
 ``meminfo``): numba's increments and decrements of them are no-ops. The views

@@ -2,9 +2,10 @@
 
 Numba types a compiled function passed as an argument by its identity, so the
 driver would be compiled anew for every model, and (from Python) in every new
-process: some 30 s each time. Typed instead as a first-class function,
+process: the whole loop compiled each time. Typed instead as a first-class function,
 ``FunctionType(float64[::1](float64, float64[::1], type(args)))``, the model's
-functions are called through a pointer (a few nanoseconds more per call), and one
+functions are called through a pointer (an indirect call, timed in
+``benchmarks/results/engine.md``), and one
 compiled driver, kept in numba's disk cache, serves every model whose ``args``
 have the same numba type. :func:`engine_for` builds (or loads) that driver for a
 type of ``args``: compiled for exactly that signature and closed to other
@@ -69,7 +70,7 @@ def _closed(py_func, signature):
 def engine_for(args, args_type=None) -> Engine:
     """The :class:`Engine` for ``args`` (any numba-typable value), compiled on first use.
 
-    ``args_type``, numba's type of ``args``, saves looking it up again (0.1-0.5 ms for a nested tuple).
+    ``args_type``, numba's type of ``args``, saves looking it up again (numba walks a nested tuple to type it).
     """
     args_type = numba.typeof(args) if args_type is None else args_type
     engine = _ENGINES.get(args_type)
@@ -87,9 +88,9 @@ class _Address(WrapperAddressProtocol):
     """A compiled function as the driver takes it, its address and numba type looked up once.
 
     Passed as a dispatcher, a model's function would be resolved to its
-    compiled version and address at every call of the driver from Python
-    (about 0.2 ms each, a few milliseconds per run, which dominates short
-    phases of hybrid runs and sweeps of short trajectories).
+    compiled version and address at every call of the driver from Python,
+    a cost that would dominate short phases of hybrid runs and sweeps of short
+    trajectories.
     """
 
     def __init__(self, dispatcher, function_type):
@@ -111,7 +112,7 @@ class _Address(WrapperAddressProtocol):
 @typeof_impl.register(_Address)
 def _typeof_address(value, context):
     # numba's own rule for such objects builds the type afresh from the signature at every call
-    # of the driver: 0.5 ms each when ``args`` is a nested tuple
+    # of the driver, which is costly when ``args`` is a nested tuple
     return value._numba_type_
 
 

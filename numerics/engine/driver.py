@@ -12,7 +12,7 @@ cached. Compiled code may call them directly,
     def run_model(y0, t_end, args):
         return solve(rhs, rhs_jacobian, contact_events, args, 0.0, y0, t_end, ...)
 
-which compiles the whole loop for that model inside the caller (about 30 s), and
+which compiles the whole loop for that model inside the caller, and
 again in every process: a compiled function handed on as a value is a pointer to
 a Python object, which numba does not write to its disk cache.
 

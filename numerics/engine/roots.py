@@ -26,7 +26,7 @@ MAX_ITERATIONS = 200  # far beyond what a bracket of doubles can need
 
 # Both inlined where they are called: a call of a compiled function copies the run's state, 36
 # arrays, onto the stack and counts a reference to each (no-ops on the loop's borrowed views, but calls
-# all the same): 1.5 us a root, 14 % of a regime map's integration, before.
+# all the same), a cost a regime map's integration paid at every root.
 @jit(cache=False, inline="always")
 def _g(events, args, s, i, t, y, g):
     """Event i at time t on the last step's dense output (y (n,) and g (m,) are scratch)."""

@@ -25,7 +25,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from fnmatch import fnmatchcase
 
-from .checks import Check, Finding
+from ..checks import Check, Finding
 
 __all__ = ["CLAIMS", "Claim", "Row", "claim_rows", "claims_table"]
 
@@ -226,7 +226,7 @@ def _aluminium(alpha_deg: float = 5.0):
 
 
 def _rest_point(f: Found) -> str:
-    from .dynamics_checks import critical_slope
+    from dynamics.equations.special import critical_slope
 
     al = _aluminium()
     return (f"Full model: a rest point at contact needs M b sin(alpha) < m'_a delta, i.e. s b/a < 1; for the "
@@ -276,7 +276,7 @@ def _figure8_verdict(f: Found) -> tuple[bool, str]:
 
 
 def _figure9(f: Found) -> str:
-    from .contact_checks import FIGURE9_PSI, KAPPA_STAR, onset_slope
+    from ..contact_checks import FIGURE9_PSI, KAPPA_STAR, onset_slope
 
     rates = f["rates"]
     return (f"{_count(rates, 'runs')} simulated steady states on the fixed points (5.10)/(5.11 corrected) to "
@@ -287,7 +287,7 @@ def _figure9(f: Found) -> str:
 
 
 def _figure9_verdict(f: Found) -> tuple[bool, str]:
-    from .contact_checks import FIGURE9_PSI, KAPPA_STAR, onset_slope
+    from ..contact_checks import FIGURE9_PSI, KAPPA_STAR, onset_slope
 
     off = onset_slope(FIGURE9_PSI) / onset_slope(FIGURE9_PSI, KAPPA_STAR) - 1.0
     return True, (f"locked below the onset, sliding above it, on (5.10)-(5.11) once erratum 6 is fixed; (6.4) is "
@@ -304,7 +304,7 @@ def _figure10(f: Found) -> str:
 
 
 def _figure10_verdict(f: Found) -> tuple[bool, str]:
-    from .contact_checks import ZETAS
+    from ..contact_checks import ZETAS
 
     return True, (f"scaling by V* collapses the oils and the lines (zeta*/2) sin(alpha) are (6.1)'s locked "
                   f"branch, to O(zeta*^2) ({f['compact'].measured * 0.04:.1%} at zeta* = 0.2). The tool draws "
@@ -314,7 +314,7 @@ def _figure10_verdict(f: Found) -> tuple[bool, str]:
 # -- finite gap, cavitation -----------------------------------------------------------
 
 def _corrections(f: Found) -> str:
-    from .corrections import APPARATUS, C_FORMS
+    from ..corrections import APPARATUS, C_FORMS
 
     slopes = [c.measured for c in f.all("slope")]
     c0 = {name: (form(0.0), form(0.99)) for name, form in C_FORMS.items()}
@@ -339,7 +339,7 @@ def _corrections(f: Found) -> str:
 
 
 def _corrections_verdict(f: Found) -> tuple[bool, str]:
-    from .corrections import APPARATUS
+    from ..corrections import APPARATUS
 
     return False, (f"the ordering is confirmed (every correction is first order in delta/a), but at delta/a = "
                    f"{APPARATUS['delta_over_a']:.2f} it is not small: the leading-order forces underestimate the "
