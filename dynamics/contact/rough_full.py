@@ -294,12 +294,12 @@ def _contact_rates(y, p, c, locked, sigma, model):
     curl = kaa * dot_a * dot_a + 2.0 * kab * dot_a * dot_b + kbb * dot_b * dot_b
     arm = a + eps
     # G'' = -(r0 + N r_n + F r_f): eps'' less eps*'' in the accelerations
-    r0 = ex * base[0] + ez * base[1] + eps * chi_dot * chi_dot - delta * (
-        tilt * (cx * base[0] + cz * base[1] - 2.0 * eps_dot * chi_dot) - ka * base[2] - kb * base[3] + curl)
-    r_n = ex * normal[0] + ez * normal[1] - delta * (
-        tilt * (cx * normal[0] + cz * normal[1]) - ka * normal[2] - kb * normal[3])
-    r_f = ex * friction[0] + ez * friction[1] - delta * (
-        tilt * (cx * friction[0] + cz * friction[1]) - ka * friction[2] - kb * friction[3])
+    r0 = ex * base[0] + ez * base[1] + eps * chi_dot * chi_dot - (
+        tilt * (cx * base[0] + cz * base[1] - 2.0 * eps_dot * chi_dot) - delta * (ka * base[2] + kb * base[3] - curl))
+    r_n = ex * normal[0] + ez * normal[1] - (
+        tilt * (cx * normal[0] + cz * normal[1]) - delta * (ka * normal[2] + kb * normal[3]))
+    r_f = ex * friction[0] + ez * friction[1] - (
+        tilt * (cx * friction[0] + cz * friction[1]) - delta * (ka * friction[2] + kb * friction[3]))
     if locked:
         s0 = cx * base[0] + cz * base[1] + a * base[2] - arm * base[3] - eps_dot * (chi_dot + omega_b)
         s_n = cx * normal[0] + cz * normal[1] + a * normal[2] - arm * normal[3]
