@@ -167,7 +167,8 @@ class Compliance:
         if self.stiffness is not None:
             object.__setattr__(self, "stiffness", check_range("stiffness", self.stiffness, 0.0, math.inf,
                                                               low_open=True, unit="N/m"))
-        object.__setattr__(self, "damping_ratio", check_range("damping_ratio", self.damping_ratio, 0.0, 100.0))
+        object.__setattr__(self, "damping_ratio", check_range("damping_ratio", self.damping_ratio, 0.0, 100.0,
+                                                                 high_open=False))
         object.__setattr__(self, "slip_velocity", check_range("slip_velocity", self.slip_velocity, 0.0, math.inf,
                                                               low_open=True, unit="m/s"))
 
