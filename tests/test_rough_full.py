@@ -29,7 +29,7 @@ from dynamics.contact.laws import (
     height_scale,
 )
 from dynamics.contact.reduced import ContactParams
-from dynamics.contact.rough_full import fluid_dissipation
+from dynamics.contact.rough_full import RoughFullRun, fluid_dissipation
 from dynamics.contact.roughness import (
     CLIP_FLOOR,
     CLIP_KNEE,
@@ -195,6 +195,56 @@ def test_amplitude_zero_reproduces_the_uniform_full_contact_bit_for_bit(psi, sta
     assert set(uniform.columns) == set(rough.columns)
     for name, column in uniform.columns.items():
         assert np.array_equal(column, rough.columns[name]), name
+
+
+def impact_momentum(chi, eps, v, omega_a, omega_b):
+    """The (2.4) angular momentum that an impulse between the cylinders cannot change (tests/test_full_contact.py)."""
+    x, z = eps * math.sin(chi), eps * math.cos(chi)
+    return (0.5 * AP.m_a * AP.a**2 * omega_a + (AP.M + AP.m_b) * AP.b**2 * omega_b
+            + AP.m_eff * (z * v[0] - x * v[1]) + AP.m_a_reduced * AP.b * (v[0] + z * omega_b))
+
+
+def kinetic(v, omega_a, omega_b):
+    return (0.5 * (AP.M + AP.m_b) * AP.b**2 * omega_b**2 + AP.m_a_reduced * AP.b * omega_b * v[0]
+            + 0.5 * AP.m_eff * (v @ v) + 0.25 * AP.m_a * AP.a**2 * omega_a**2)
+
+
+@pytest.mark.parametrize(("psi", "sticks"), [(1.2, True), (0.3, False)])
+def test_the_impact_on_the_moving_constraint_conserves_angular_momentum_and_loses_energy(psi, sticks):
+    """A touch where the asperities' gap is steep (|d kappa*/d theta| ~ 1): the impulse P_N grad G.
+
+    It stops the approach G' (not eps'), keeps (2.4)'s angular momentum (the impulses are internal,
+    with no net torque about B: to 1e-12), loses kinetic energy, and stops the slip if the static
+    cone holds the stick impulse, else slides through with |P_F| = mu P_N against the slip.
+    """
+    run = RoughFullRun(AP, FORCES, surfaces(0.9, psi, seed=5), Limits(), 1e-9)
+    chi, turned, x_b = math.pi + 0.3, 0.7, 0.3 * AP.b
+    kappa, _, ka, kb = run.local(chi, turned, x_b)
+    assert max(abs(ka), abs(kb)) > 0.1 * (1.0 - kappa)  # steep: the tilt of grad G is not small
+    eps, delta = kappa * AP.delta, AP.delta
+    e_eps, e_chi = np.array([math.sin(chi), math.cos(chi)]), np.array([math.cos(chi), -math.sin(chi)])
+    v = (0.2 * e_eps + 0.3 * e_chi) * delta / AP.tau
+    omega_b = 0.1 / AP.tau
+    slip_before = (0.01 if sticks else 100.0) * 0.2 * delta / AP.tau
+    omega_a = (slip_before - e_chi @ v + (AP.a + eps) * omega_b) / AP.a
+
+    def approach(v, omega_a, omega_b):  # -G'
+        chi_dot = (e_chi @ v) / eps
+        return e_eps @ v - delta * (ka * (chi_dot - omega_a) + kb * (chi_dot - omega_b))
+
+    assert approach(v, omega_a, omega_b) > 0.0
+    v1, wa1, wb1, p_n, p_f = run.impact(chi, turned, x_b, v, omega_a, omega_b)
+    assert p_n > 0.0
+    assert abs(approach(v1, wa1, wb1)) < 1e-12 * delta / AP.tau
+    before = impact_momentum(chi, eps, v, omega_a, omega_b)
+    assert impact_momentum(chi, eps, v1, wa1, wb1) == pytest.approx(before, rel=1e-12)
+    assert kinetic(v1, wa1, wb1) < kinetic(v, omega_a, omega_b)
+    slip_after = e_chi @ v1 + AP.a * wa1 - (AP.a + eps) * wb1
+    if sticks:
+        assert abs(slip_after) < 1e-12 * AP.b / AP.tau and abs(p_f) <= run.mu_s * p_n
+    else:
+        assert abs(p_f) == pytest.approx(run.mu_k * p_n, rel=1e-12)
+        assert p_f < 0.0 < slip_after
 
 
 # -- the compliant contact tends to the hard one ---------------------------------------------------
@@ -402,6 +452,7 @@ def test_hard_contact_keeps_the_constraint_and_the_friction_laws():
     assert np.max(np.abs(slip[locked])) < 1e-10 * AP.b / AP.tau
     assert friction_coefficient(0.0, mu_k, mu_s, 1.0) == mu_s
     assert friction_coefficient(1e3, mu_k, mu_s, 1.0) == mu_k
+    assert friction_coefficient(-4.0, mu_k, mu_s, 2.0) == pytest.approx(mu_k + (mu_s - mu_k) * math.exp(-4.0), rel=1e-15)
     assert friction_coefficient(0.3, mu_k, mu_k, 1e-3) == mu_k  # Coulomb, exactly
     for sw in run.info["switches"]:
         if sw["to"] == "free":
