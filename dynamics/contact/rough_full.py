@@ -105,6 +105,10 @@ sweeps past, the free phase carries S' = kappa^2 u*', the roughness seen along
 its path, under error control (as :mod:`dynamics.contact.rough`; kappa^2 keeps it
 finite at the centre), and a free phase that starts on the constraint measures
 its clearance from its own start (the shift of :mod:`dynamics.contact.rough`).
+In the full model the radial inertia already keeps the free steps short near
+the constraint: no run of the tests, spinning cylinders on asperities of
+correlation 0.02 rad included, missed a touch without S. It is kept as the
+reduced model's safeguard, at the cost of its error control.
 
 The compliant contact
 ---------------------
@@ -139,7 +143,8 @@ from collections import namedtuple
 import numpy as np
 
 from dynamics.contact.full import LOCKED_EVENTS, SLIDING_EVENTS, friction_coefficient
-from dynamics.contact.laws import COMPLIANT, friction_coefficient as stribeck_mu, gw_load, gw_potential, height_scale
+from dynamics.contact.laws import COMPLIANT, gw_load, height_scale
+from dynamics.contact.laws import friction_coefficient as stribeck_mu
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING
 from dynamics.contact.roughness import RoughContact, _local2_kernel
 from dynamics.equations import full
