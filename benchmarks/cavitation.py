@@ -4,14 +4,14 @@ The case is the one the equations of motion meet while the gap closes: the thin
 gap at kappa = 0.99, both cylinders turning (W_a = 1, W_b = 0.5 rad/s) and the
 inner cylinder sinking (eps' = 10 um/s), 200 cSt oil, p_ref - p_cav = 100 Pa,
 so that a cavity covers about a quarter of the film. The grid is the Sommerfeld
-grid with one Gauss point per cell, as :func:`dynamics.equations.forces.reynolds`
+grid with one Gauss point per cell, as :func:`lubrication.reynolds.reynolds_kernel`
 builds it by default.
 
 Each solve is timed two ways, JIT compilation excluded:
 
 * "jit": a numba loop calling :func:`lubrication.cavitation_kernels.cavitating_film_forces`
   (the full film: :func:`lubrication.reynolds_kernels.film_forces`) with the arguments that
-  :func:`dynamics.equations.forces.evaluate` passes, i.e. what a trajectory pays per
+  :func:`lubrication.reynolds.reynolds_kernel` passes, i.e. what a trajectory pays per
   right-hand side;
 * "python": :func:`lubrication.cavitation.cavitating_forces` (the full film:
   :func:`lubrication.reynolds_forces`), validation and dataclasses included.
@@ -57,14 +57,14 @@ MOTION = Motion(eps_dot=1e-5, omega_a=1.0, omega_b=0.5)  # sinking and turning, 
 P_REF = 101325.0  # Pa
 P_CAV = P_REF - 100.0  # a cavity over about a quarter of the film
 CELLS = tuple(2**k for k in range(5, 12))  # 32 .. 2048
-POINTS_PER_CELL = 1  # as dynamics.equations.forces.reynolds by default
+POINTS_PER_CELL = 1  # as lubrication.reynolds.reynolds_kernel by default
 ROUNDS = 15
 BATCH_SECONDS = 2e-3
 
 
 @njit
 def _cavitating_loop(repeats, model, kappa, omk, eps_dot, w_a, w_b, rule, m, p_cav, p_ref):
-    """Call the cavitating kernel ``repeats`` times as dynamics.equations.forces.evaluate does; return a checksum."""
+    """Call the cavitating kernel ``repeats`` times as lubrication.reynolds.reynolds_kernel does; return a checksum."""
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     n = spsi.size // m
     none = np.empty(0)  # no tabulated profile (a global array would be read-only)
@@ -80,7 +80,7 @@ def _cavitating_loop(repeats, model, kappa, omk, eps_dot, w_a, w_b, rule, m, p_c
 
 @njit
 def _full_film_loop(repeats, kappa, omk, eps_dot, w_a, w_b, rule, m):
-    """Call the full-film kernel ``repeats`` times as dynamics.equations.forces.evaluate does; return a checksum."""
+    """Call the full-film kernel ``repeats`` times as lubrication.reynolds.reynolds_kernel does; return a checksum."""
     cpsi, spsi, vpsi, ppsi, wpsi = rule
     none = np.empty(0)  # no tabulated profile, no pressure wanted
     total = 0.0

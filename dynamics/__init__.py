@@ -30,7 +30,8 @@ stamp_kernels(__name__, "lubrication", "numerics")
 _WHERE = {
     "ALUMINIUM": "apparatus", "PRESETS": "apparatus", "STEEL": "apparatus", "Apparatus": "apparatus",
     "preset": "apparatus",
-    "ContactParams": "contact.reduced", "RoughContact": "contact.roughness",
+    "ContactParams": "contact.reduced", "RoughContact": "contact.roughness", "Spectrum": "contact.roughness",
+    "Compliance": "contact.laws", "Stribeck": "contact.laws",
     "Limits": "equations.limits", "NavierStokesOptions": "equations.navier_stokes", "ReducedParams": "equations.reduced",
     "Initial": "initial",
     "Trajectory": "trajectory", "simulate": "simulation", "ValidityWarning": "equations.limits",

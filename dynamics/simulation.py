@@ -25,6 +25,7 @@ import numpy as np
 from dynamics.apparatus import Apparatus
 from dynamics.contact import reduced as reduced_contact
 from dynamics.contact.reduced import ContactParams
+from dynamics.contact.roughness import RoughContact
 from dynamics.equations import full, reduced
 from dynamics.equations.limits import (
     MIN_GAP_FLOOR_FULL,
@@ -75,8 +76,10 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         cavitating film whose content joins the state (:mod:`dynamics.equations.film`);
         the reduced equations have the closed forms built in.
     contact : ContactParams or RoughContact, optional
-        Rough contact (section 5); a minimum gap that varies along the surfaces
-        (:class:`dynamics.contact.roughness.RoughContact`) in the reduced equations only.
+        Rough contact (section 5): a uniform minimum gap, or one that varies along the
+        surfaces and turns with them (:class:`dynamics.contact.roughness.RoughContact`), in
+        either equations; Stribeck friction and a compliant contact
+        (:mod:`dynamics.contact.laws`) in the full equations only.
     limits : Limits
         Validity limits and what to do at them (:mod:`dynamics.equations.limits`).
     method : {"radau", "Radau", "BDF", "LSODA"}
@@ -306,9 +309,14 @@ def _check_start(initial: Initial, limits: Limits, contact, equations: str, meth
         msg = (f"initial.kappa must be in [0, kappa_star] = [0, {contact.kappa_star:.12g}]: the asperities touch at "
                f"kappa_star; got {initial.kappa!r}")
         raise ValueError(msg)
-    if contact is not None and not isinstance(contact, ContactParams) and equations == "full":
-        msg = ("a minimum gap that varies along the surfaces is modelled in the reduced equations only; use "
-               "equations='reduced' or a uniform ContactParams")
+    if contact is not None and not isinstance(contact, (ContactParams, RoughContact)):
+        msg = f"contact must be a ContactParams, a RoughContact or None, got {type(contact).__name__}"
+        raise TypeError(msg)
+    if isinstance(contact, RoughContact) and contact.laws and equations == "reduced":
+        which = "contact.compliance (a compliant contact)" if contact.compliance is not None else \
+            "contact.friction (Stribeck friction)"
+        msg = (f"{which} is modelled in the full equations only; the reduced equations (2.11) keep section 5's "
+               "hard contact and Coulomb friction: use equations='full' or leave it None")
         raise ValueError(msg)
 
 
@@ -334,8 +342,6 @@ class _Run(Recorder):
         progress = None if self.progress is None else (lambda t: self.progress(t * tau))
         rates = (initial.omega_a * tau, initial.omega_b * tau)
         if contact is not None:
-            from dynamics.contact.roughness import RoughContact
-
             runner = reduced_contact.run_contact
             if isinstance(contact, RoughContact):
                 from dynamics.contact.rough import run_rough_contact as runner
@@ -369,11 +375,12 @@ class _Run(Recorder):
         self.inertia_corrected = model.inertia_corrected
         if contact is not None:
             from dynamics.contact import full as full_contact
+            from dynamics.contact.rough_full import run_rough_full
 
-            fields = full_contact.run_full_contact(ap, model, contact, initial, self.t_end, limits=self.limits,
-                                                   method=self.method, rtol=self.rtol, t_eval=self.t_eval, steps=True,
-                                                   max_steps=self.max_steps, progress=self.progress,
-                                                   frame_terms=self.frame_terms)
+            runner = run_rough_full if isinstance(contact, RoughContact) else full_contact.run_full_contact
+            fields = runner(ap, model, contact, initial, self.t_end, limits=self.limits, method=self.method,
+                            rtol=self.rtol, t_eval=self.t_eval, steps=True, max_steps=self.max_steps,
+                            progress=self.progress, frame_terms=self.frame_terms)
             return self.contact_trajectory(fields, "full", model.name, ap.reduced_params)
         limits = self.limits
         args = full.run_args(ap, model, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dynamics.contact.laws import COMPLIANT
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING
 from dynamics.equations.limits import (
     LIMIT_EVENTS,
@@ -27,8 +28,8 @@ from numerics.engine import END, EVENT, INTERRUPTED, SAMPLE, START, STEP
 
 __all__ = ["PHASE_CODES", "Recorder", "Trajectory", "event_names"]
 
-#: Contact phases as numbers in the trajectory table.
-PHASE_CODES = {FREE: 0, SLIDING: 1, LOCKED: 2}
+#: Contact phases as numbers in the trajectory table (a compliant contact is one smooth phase).
+PHASE_CODES = {FREE: 0, SLIDING: 1, LOCKED: 2, COMPLIANT: 3}
 
 _ROW_NAMES = ((START, "start"), (STEP, "step"), (SAMPLE, "sample"), (EVENT, "event"), (END, "end"))
 

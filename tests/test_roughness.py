@@ -1,5 +1,6 @@
 """Rough surfaces (dynamics.contact.roughness) and contact on a moving constraint (dynamics.contact.rough)."""
 
+import dataclasses
 import functools
 import math
 import re
@@ -11,6 +12,7 @@ from scipy.optimize import brentq
 from dynamics.analysis import rolling_statistics
 from dynamics.apparatus import STEEL
 from dynamics.contact import reduced as uniform_contact
+from dynamics.contact.laws import Stribeck
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.rough import (
     RoughContactRun,
@@ -599,8 +601,9 @@ def test_invalid_arguments():
         RoughContact.from_rolled_length(mean, 0.5, 1e-3, 0.01, 0.008, 0)
     with pytest.raises(ValueError, match="method"):
         simulate(FIG7, RELEASE, 1.0, contact=_rough(0.5, 0.1), method="RK45")
-    with pytest.raises(ValueError, match="reduced equations only"):
-        simulate(STEEL, RELEASE, 1.0, contact=_rough(0.5, 0.1))
+    with pytest.raises(ValueError, match="full equations only"):
+        simulate(STEEL, RELEASE, 1.0, equations="reduced",
+                 contact=dataclasses.replace(_rough(0.5, 0.1), friction=Stribeck(0.2, 1e-3)))
     with pytest.raises(ValueError, match="t_settle"):
         rolling_statistics(_run(0.0, 0.05, 0, 300.0), 400.0)
     in_seconds = simulate(STEEL, RELEASE, 0.5, equations="reduced", contact=_rough(0.5, 0.1))

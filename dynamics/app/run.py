@@ -5,8 +5,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 from dynamics.app.auto import resolve_model
+from dynamics.contact.laws import Compliance, Stribeck
 from dynamics.contact.reduced import ContactParams
-from dynamics.contact.roughness import RoughContact
+from dynamics.contact.roughness import RoughContact, Spectrum
 from dynamics.scenes import Scene, SceneError
 from dynamics.simulation import simulate
 from dynamics.trajectory import Trajectory
@@ -29,15 +30,18 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     Raises
     ------
     SceneError
-        For a choice this version cannot model (a varying minimum gap in the
-        full equations, cavitation without the Reynolds solver).
+        For a choice this version cannot model (a compliant contact or Stribeck
+        friction in the reduced equations, cavitation without the Reynolds solver).
     """
     model = scene.model
     rough = scene.contact
-    if rough is not None and model.equations == "full" and rough.roughness_amplitude > 0:
-        raise _refuse("contact.roughness_amplitude",
-                      "a minimum gap that varies along the surfaces is modelled in the reduced equations "
-                      "only; set model.equations = 'reduced' or contact.roughness_amplitude = 0")
+    if rough is not None and model.equations == "reduced":
+        for key, given, default in (("contact.law", rough.law, "hard"),
+                                    ("contact.friction_law", rough.friction_law, "coulomb")):
+            if given != default:
+                raise _refuse(key, f"{given!r} is modelled in the full equations only; the reduced equations "
+                                   f"(2.11) keep section 5's hard contact and Coulomb friction: set "
+                                   f"model.equations = 'full' or {key} = {default!r}")
     cavitation = scene.cavitation
     if cavitation is not None and model.forces != "reynolds":
         raise _refuse("model.forces", "a cavitating film needs the Reynolds solver: set "
@@ -50,13 +54,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
         return trajectory
     contact = None
     if rough is not None:
-        contact = ContactParams(rough.kappa_star, rough.psi)
-        if rough.roughness_amplitude > 0:
-            # the correlation is a distance rolled: metres, or units of b in a dimensionless scene
-            a, b = ((scene.apparatus.a, scene.apparatus.b) if scene.apparatus is not None
-                    else (1.0 / (1.0 + scene.groups.delta_over_a), 1.0))
-            contact = RoughContact.from_rolled_length(contact, rough.roughness_amplitude,
-                                                      rough.roughness_correlation, a, b, rough.seed)
+        contact = _contact(scene)
     system = scene.apparatus if scene.apparatus is not None else scene.groups.reduced_params
     forces = "closed-form"
     if model.equations == "full":
@@ -87,6 +85,31 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if reach is not None:
         _report_resolution(trajectory, model, reach)
     return trajectory
+
+
+def _contact(scene: Scene) -> ContactParams | RoughContact:
+    """The scene's contact: section 5's uniform one, or surfaces with the laws the scene names."""
+    rough = scene.contact
+    mean = ContactParams(rough.kappa_star, rough.psi)
+    friction = None if rough.friction_law == "coulomb" else Stribeck(rough.psi_static, rough.stribeck_velocity)
+    compliance = None if rough.law == "hard" else Compliance(rough.heights, rough.stiffness, rough.damping_ratio,
+                                                             rough.slip_velocity)
+    laws = {"friction": friction, "compliance": compliance}
+    if rough.roughness_amplitude > 0:
+        # the correlation is a distance rolled: metres, or units of b in a dimensionless scene
+        a, b = ((scene.apparatus.a, scene.apparatus.b) if scene.apparatus is not None
+                else (1.0 / (1.0 + scene.groups.delta_over_a), 1.0))
+        spectrum = Spectrum(rough.roughness_spectrum, rough.roughness_hurst, rough.roughness_bandwidth)
+        try:
+            return RoughContact.from_rolled_length(mean, rough.roughness_amplitude, rough.roughness_correlation, a,
+                                                   b, rough.seed, spectrum=spectrum, **laws)
+        except ValueError as err:
+            if str(err).startswith("correlation"):
+                raise _refuse("contact.roughness_correlation", str(err)) from err
+            raise
+    if friction is None and compliance is None:
+        return mean
+    return RoughContact.uniform(mean, **laws)
 
 
 #: The scene key of each option of the force-model registry (:mod:`lubrication.registry`).

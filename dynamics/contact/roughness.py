@@ -48,6 +48,21 @@ is therefore the standard deviation of sigma along the surfaces, not just its
 ensemble mean. The scaling is invariant under rotations, so the field stays
 stationary; it is Gaussian in the limit of many modes.
 
+Spectra. The Gaussian spectrum above is the default. A self-affine surface
+(:class:`Spectrum` with ``kind = "self-affine"``) has instead
+
+    w_k = 1                          for k lambda <= 1,
+    w_k = (k lambda)^-(1 + 2 H)      for k lambda > 1,   k <= K = bandwidth/lambda,
+
+the power spectrum of a profile along a circle that is flat below the
+roll-off wavenumber 1/lambda and falls as k^-(1 + 2H) above it, H in (0, 1)
+the Hurst exponent. Such a profile has no slope without a short-wavelength
+cutoff (sum_k k^2 w_k diverges for H < 1), so the series stops at the
+wavenumber ``bandwidth``/lambda, where the asperities of a real surface stop.
+Both are drawn from the same seeded normal coefficients and scaled to unit
+mean square the same way, so they differ only in the weights w_k; the
+correlation function below holds for either with its own weights.
+
 The heights of the two surfaces add in the gap, so the minimum gap is
 
     sigma(theta_a, theta_b) = sigma_mean (1 + amplitude g),
@@ -84,11 +99,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from dynamics.contact.laws import Compliance, Stribeck
 from dynamics.contact.reduced import ContactParams
 from lubrication.geometry import check_range
 from numerics.jit import jit
 
-__all__ = ["CLIP_FLOOR", "CLIP_KNEE", "MAX_MODES", "LocalGap", "RoughContact", "SurfaceHeights", "soft_floor"]
+__all__ = ["CLIP_FLOOR", "CLIP_KNEE", "GAUSSIAN", "MAX_MODES", "SPECTRA", "LocalCurvature", "LocalGap",
+           "RoughContact", "Spectrum", "SurfaceHeights", "soft_floor"]
 
 CLIP_FLOOR = 0.1  # sigma and kappa* never fall below this fraction of their means
 CLIP_KNEE = 0.2  # ... and are left unchanged above this fraction
@@ -98,6 +115,65 @@ MAX_MODES = 20_000
 _TAIL = 4.0 * math.log(1.0 / np.finfo(float).eps)  # c_k/c_1 < eps beyond k^2 = 1 + _TAIL/lambda^2
 _CHUNK = 4096  # samples per block when evaluating at many angles (memory ~ chunk x K)
 _RESEED = 16  # modes between direct evaluations of cos(k theta), sin(k theta) in the compiled field
+
+#: The spectra a surface may have (:class:`Spectrum`).
+SPECTRA = ("gaussian", "self-affine")
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """The power spectrum of one surface's heights along its circle (module docstring).
+
+    Attributes
+    ----------
+    kind : {"gaussian", "self-affine"}
+    hurst : float
+        Hurst exponent H of a self-affine surface, in (0, 1): the spectrum falls
+        as k^-(1 + 2H) beyond the roll-off. Unused for "gaussian".
+    bandwidth : float
+        Short-wavelength cutoff of a self-affine surface, as the ratio of the
+        cutoff wavenumber to the roll-off wavenumber 1/lambda, in [1, 1e4].
+        Unused for "gaussian", whose series ends where its weights reach rounding.
+    """
+
+    kind: str = "gaussian"
+    hurst: float = 0.8
+    bandwidth: float = 10.0
+
+    def __post_init__(self):
+        if self.kind not in SPECTRA:
+            msg = f"spectrum must be one of {', '.join(map(repr, SPECTRA))}, got {self.kind!r}"
+            raise ValueError(msg)
+        object.__setattr__(self, "hurst", check_range("hurst", self.hurst, 0.0, 1.0, low_open=True,
+                                                      high_open=True))
+        object.__setattr__(self, "bandwidth", check_range("bandwidth", self.bandwidth, 1.0, 1e4,
+                                                          high_open=False))
+
+    def modes(self, correlation: float) -> int:
+        """K, the number of Fourier modes of a surface with correlation length ``correlation`` (rad)."""
+        if self.kind == "gaussian":
+            n = max(1, int(math.sqrt(1.0 + _TAIL / correlation**2)))
+            least = math.sqrt(_TAIL / MAX_MODES**2)
+        else:
+            n = max(1, int(self.bandwidth / correlation))
+            least = self.bandwidth / (MAX_MODES + 1)
+        if n > MAX_MODES:
+            msg = (f"correlation must be at least {least:.3g} rad (a series of at most {MAX_MODES} modes), "
+                   f"got {correlation!r}")
+            raise ValueError(msg)
+        return n
+
+    def amplitudes(self, correlation: float, n: int) -> np.ndarray:
+        """c_k = sqrt(w_k), k = 1 .. n, before the random draw (module docstring)."""
+        k = np.arange(1, n + 1)
+        if self.kind == "gaussian":
+            return np.exp(-0.25 * (k * correlation) ** 2)
+        x = k * correlation  # wavenumber over the roll-off 1/lambda
+        return np.where(x <= 1.0, 1.0, np.maximum(x, 1.0) ** -(0.5 + self.hurst))
+
+
+#: The default spectrum, that of the paper's suggestion as the reduced model first took it.
+GAUSSIAN = Spectrum()
 
 
 def soft_floor(x, floor: float, knee: float):
@@ -133,6 +209,25 @@ def _soft_floor_kernel(x, floor, knee):
 
 
 @jit
+def _soft_floor2_kernel(x, floor, knee):
+    """:func:`_soft_floor_kernel` and the curvature d^2 value/dx^2 (module docstring: curvatures)."""
+    if x >= knee:
+        return x, 1.0, 0.0
+    v = (knee - x) / (knee - floor)
+    blend = 1.0 / (1.0 + v * (1.0 + v))
+    return (floor + (knee - floor) * blend, (1.0 + 2.0 * v) * blend * blend,
+            6.0 * v * (1.0 + v) * blend * blend * blend / (knee - floor))
+
+
+def soft_floor_curvature(x, floor: float, knee: float):
+    """d^2/dx^2 of :func:`soft_floor` (0 above ``knee``, continuous at it)."""
+    x = np.asarray(x, dtype=float)
+    v = np.maximum((knee - x) / (knee - floor), 0.0)
+    blend = 1.0 / (1.0 + v * (1.0 + v))
+    return np.where(x < knee, 6.0 * v * (1.0 + v) * blend**3 / (knee - floor), 0.0)
+
+
+@jit
 def _heights_kernel(theta, cos_coefficients, sin_coefficients):
     """Scalar twin of :meth:`SurfaceHeights.__call__`: f(theta) and f'(theta).
 
@@ -155,6 +250,47 @@ def _heights_kernel(theta, cos_coefficients, sin_coefficients):
         value += cos * cos_coefficients[i] + sin * sin_coefficients[i]
         slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
     return value, slope
+
+
+@jit
+def _heights2_kernel(theta, cos_coefficients, sin_coefficients):
+    """:func:`_heights_kernel` and f''(theta), by the same rotations."""
+    theta = theta % (2.0 * math.pi)
+    step_cos, step_sin = math.cos(theta), math.sin(theta)
+    value, slope, curvature = 0.0, 0.0, 0.0
+    cos, sin = 1.0, 0.0
+    for i in range(cos_coefficients.size):
+        k = i + 1.0
+        if i % _RESEED == 0:
+            cos, sin = math.cos(k * theta), math.sin(k * theta)
+        else:
+            cos, sin = cos * step_cos - sin * step_sin, sin * step_cos + cos * step_sin
+        even = cos * cos_coefficients[i] + sin * sin_coefficients[i]
+        value += even
+        slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
+        curvature -= k * k * even
+    return value, slope, curvature
+
+
+@jit
+def _local2_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
+    """:func:`_local_kernel` and the curvatures (k_aa, k_ab, k_bb) of kappa* (module docstring).
+
+    The first four values are those of :func:`_local_kernel` operation for operation.
+    """
+    f_a, df_a, ddf_a = _heights2_kernel(theta_a, cos_a, sin_a)
+    f_b, df_b, ddf_b = _heights2_kernel(theta_b, cos_b, sin_b)
+    scale = amplitude / math.sqrt(2.0)
+    gap, gap_slope, gap_curvature = _soft_floor2_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
+    ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
+    clipped, ratio_slope, ratio_curvature = _soft_floor2_kernel(ratio, CLIP_FLOOR, CLIP_KNEE)
+    chain = -gap_mean * ratio_slope * gap_slope
+    bend = -gap_mean * (ratio_slope * gap_curvature - gap_mean * ratio_curvature * gap_slope * gap_slope / kappa_mean)
+    slope_a, slope_b = scale * df_a, scale * df_b
+    return (kappa_mean * clipped, gap_mean * gap + kappa_mean * (ratio - clipped),
+            chain * scale * df_a, chain * scale * df_b,
+            bend * slope_a * slope_a + chain * scale * ddf_a, bend * slope_a * slope_b,
+            bend * slope_b * slope_b + chain * scale * ddf_b)
 
 
 @jit
@@ -182,21 +318,20 @@ class SurfaceHeights:
     correlation: float  # correlation length lambda, an angle (rad)
     cos_coefficients: np.ndarray
     sin_coefficients: np.ndarray
+    spectrum: Spectrum = GAUSSIAN
 
     @classmethod
-    def from_rng(cls, correlation: float, rng: np.random.Generator) -> SurfaceHeights:
-        """Draw a surface with correlation length ``correlation`` (rad, > 0) from ``rng``."""
+    def from_rng(cls, correlation: float, rng: np.random.Generator, spectrum: Spectrum = GAUSSIAN) -> SurfaceHeights:
+        """Draw a surface with correlation length ``correlation`` (rad, > 0) and ``spectrum`` from ``rng``."""
         lam = check_range("correlation", correlation, 0.0, math.inf, low_open=True, unit="rad")
-        n = max(1, int(math.sqrt(1.0 + _TAIL / lam**2)))
-        if n > MAX_MODES:
-            msg = (f"correlation must be at least {math.sqrt(_TAIL / MAX_MODES**2):.3g} rad (a series of "
-                   f"at most {MAX_MODES} modes), got {correlation!r}")
-            raise ValueError(msg)
-        k = np.arange(1, n + 1)
-        amplitude = np.exp(-0.25 * (k * lam) ** 2)
+        if not isinstance(spectrum, Spectrum):
+            msg = f"spectrum must be a Spectrum, got {type(spectrum).__name__}"
+            raise TypeError(msg)
+        n = spectrum.modes(lam)
+        amplitude = spectrum.amplitudes(lam, n)
         a, b = amplitude * rng.standard_normal((2, n))
         rms = math.sqrt(0.5 * float(np.sum(a * a + b * b)))  # mean square over the circle (Parseval)
-        return cls(lam, a / rms, b / rms)
+        return cls(lam, a / rms, b / rms, spectrum)
 
     @property
     def modes(self) -> int:
@@ -217,14 +352,27 @@ class SurfaceHeights:
                                            - sin @ (k * self.cos_coefficients))
         return value.reshape(theta.shape), slope.reshape(theta.shape)
 
+    def curvature(self, theta):
+        """f''(theta) at body angles ``theta`` (rad, any shape)."""
+        theta = np.asarray(theta, dtype=float)
+        flat = np.mod(theta.ravel(), 2.0 * math.pi)
+        k = np.arange(1, self.modes + 1)
+        out = np.empty(flat.size)
+        for start in range(0, flat.size, _CHUNK):
+            phase = np.multiply.outer(flat[start:start + _CHUNK], k)
+            out[start:start + _CHUNK] = -(np.cos(phase) @ (k * k * self.cos_coefficients)
+                                          + np.sin(phase) @ (k * k * self.sin_coefficients))
+        return out.reshape(theta.shape)
+
     def correlation_function(self, delta):
-        """C(Delta) = sum_k w_k cos(k Delta) / sum_k w_k, the correlation of the Gaussian series.
+        """C(Delta) = sum_k w_k cos(k Delta) / sum_k w_k, the correlation of the series of this spectrum.
 
         It is what the sample correlation of many surfaces averages to, up to
         the O(1/K) bias of scaling each one to unit mean square.
         """
         k = np.arange(1, self.modes + 1)
-        weight = np.exp(-0.5 * (k * self.correlation) ** 2)
+        weight = (np.exp(-0.5 * (k * self.correlation) ** 2) if self.spectrum.kind == "gaussian"
+                  else self.spectrum.amplitudes(self.correlation, self.modes) ** 2)
         return np.cos(np.multiply.outer(np.asarray(delta, dtype=float), k)) @ weight / weight.sum()
 
 
@@ -250,6 +398,14 @@ class LocalGap(NamedTuple):
         return self.kappa / self.zeta
 
 
+class LocalCurvature(NamedTuple):
+    """Second derivatives of kappa*(theta_a, theta_b) (module docstring: curvatures)."""
+
+    kappa_aa: object
+    kappa_ab: object
+    kappa_bb: object
+
+
 @dataclass(frozen=True, eq=False)
 class RoughContact:
     """Rough contact whose minimum gap varies along both surfaces (module docstring).
@@ -257,48 +413,81 @@ class RoughContact:
     Attributes
     ----------
     mean : ContactParams
-        kappa*_mean = 1 - sigma_mean/delta and the friction angle psi of section 5.
+        kappa*_mean = 1 - sigma_mean/delta and the (kinetic) friction angle psi of section 5.
     amplitude : float
         Standard deviation of sigma along the surfaces over its mean, in [0, 1).
     inner, outer : SurfaceHeights
         The unit height functions f_a(theta_a) and f_b(theta_b).
+    friction : Stribeck or None
+        Velocity-weakening friction (:mod:`dynamics.contact.laws`); None: Coulomb with ``mean.psi``.
+        The full equations only.
+    compliance : Compliance or None
+        A compliant asperity contact (:mod:`dynamics.contact.laws`); None: the hard contact
+        of section 5. The full equations only.
     """
 
     mean: ContactParams
     amplitude: float
     inner: SurfaceHeights
     outer: SurfaceHeights
+    friction: Stribeck | None = None
+    compliance: Compliance | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "amplitude", check_range("amplitude", self.amplitude, 0.0, 1.0))
+        if self.friction is not None and not isinstance(self.friction, Stribeck):
+            msg = f"friction must be a Stribeck law or None (Coulomb), got {type(self.friction).__name__}"
+            raise TypeError(msg)
+        if self.compliance is not None and not isinstance(self.compliance, Compliance):
+            msg = f"compliance must be a Compliance or None (the hard contact), got {type(self.compliance).__name__}"
+            raise TypeError(msg)
+        if self.friction is not None and not self.friction.psi_static >= self.mean.psi:
+            msg = (f"psi_static must be in [psi, pi/2) = [{self.mean.psi:.6g}, {0.5 * math.pi:.6g}) rad: static "
+                   f"friction is at least the kinetic friction; got {self.friction.psi_static!r}")
+            raise ValueError(msg)
+
+    @property
+    def laws(self) -> bool:
+        """Whether the contact asks for a law beyond section 5's (Stribeck friction or compliance)."""
+        return self.friction is not None or self.compliance is not None
 
     @classmethod
     def from_seed(cls, mean: ContactParams, amplitude: float, correlation_a: float, correlation_b: float,
-                  seed: int) -> RoughContact:
+                  seed: int, *, spectrum: Spectrum = GAUSSIAN, friction: Stribeck | None = None,
+                  compliance: Compliance | None = None) -> RoughContact:
         """Both surfaces from one seed, with correlation lengths in rad on each surface.
 
         ``seed`` (an int >= 0) seeds a :class:`numpy.random.SeedSequence` with one
         independent child stream per surface, so that a seed always gives the same pair.
+        Both surfaces have ``spectrum``.
         """
-        if not (isinstance(seed, (int, np.integer)) and seed >= 0):
+        if isinstance(seed, bool) or not (isinstance(seed, (int, np.integer)) and seed >= 0):
             msg = f"seed must be an integer >= 0, got {seed!r}"
             raise ValueError(msg)
         inner, outer = (np.random.default_rng(child) for child in np.random.SeedSequence(int(seed)).spawn(2))
-        return cls(mean, amplitude, SurfaceHeights.from_rng(correlation_a, inner),
-                   SurfaceHeights.from_rng(correlation_b, outer))
+        return cls(mean, amplitude, SurfaceHeights.from_rng(correlation_a, inner, spectrum),
+                   SurfaceHeights.from_rng(correlation_b, outer, spectrum), friction, compliance)
 
     @classmethod
     def from_rolled_length(cls, mean: ContactParams, amplitude: float, length: float, a: float, b: float,
-                           seed: int) -> RoughContact:
+                           seed: int, **kwargs) -> RoughContact:
         """Correlation given as a distance rolled, ``length``: the angles length/a and length/b.
 
         ``length``, ``a`` and ``b`` are in one unit: metres, or b in a
-        dimensionless scene (then b = 1 and a = 1/(1 + delta/a)).
+        dimensionless scene (then b = 1 and a = 1/(1 + delta/a)). ``kwargs`` as
+        for :meth:`from_seed` (spectrum, friction, compliance).
         """
         length = check_range("length", length, 0.0, math.inf, low_open=True)
         a = check_range("a", a, 0.0, math.inf, low_open=True)
         b = check_range("b", b, a, math.inf, low_open=False)
-        return cls.from_seed(mean, amplitude, length / a, length / b, seed)
+        return cls.from_seed(mean, amplitude, length / a, length / b, seed, **kwargs)
+
+    @classmethod
+    def uniform(cls, mean: ContactParams, *, friction: Stribeck | None = None,
+                compliance: Compliance | None = None) -> RoughContact:
+        """Surfaces of uniform minimum gap (amplitude 0), to give a uniform contact the laws of
+        :mod:`dynamics.contact.laws`. The one mode drawn (seed 0) multiplies the amplitude 0."""
+        return cls.from_seed(mean, 0.0, 2.0 * math.pi, 2.0 * math.pi, 0, friction=friction, compliance=compliance)
 
     def gap_ratio(self, theta_a, theta_b):
         """x = sigma/sigma_mean = 1 + amplitude g before clipping, and dx/dtheta_a, dx/dtheta_b."""
@@ -317,6 +506,22 @@ class RoughContact:
         chain = -gap_mean * ratio_slope * gap_slope  # d kappa*/dx
         return LocalGap(kappa_mean * clipped, gap_mean * gap + kappa_mean * (ratio - clipped),
                         chain * dx_a, chain * dx_b)
+
+    def curvature(self, theta_a, theta_b) -> LocalCurvature:
+        """The second derivatives of kappa*(theta_a, theta_b) (module docstring), NumPy twin of the compiled field."""
+        x, dx_a, dx_b = self.gap_ratio(theta_a, theta_b)
+        scale = self.amplitude / math.sqrt(2.0)
+        ddx_a = scale * self.inner.curvature(theta_a)
+        ddx_b = scale * self.outer.curvature(theta_b)
+        gap, gap_slope = soft_floor(x, CLIP_FLOOR, CLIP_KNEE)
+        gap_curvature = soft_floor_curvature(x, CLIP_FLOOR, CLIP_KNEE)
+        kappa_mean, gap_mean = self.mean.kappa_star, self.mean.one_minus_kappa_star
+        ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
+        _, ratio_slope = soft_floor(ratio, CLIP_FLOOR, CLIP_KNEE)
+        ratio_curvature = soft_floor_curvature(ratio, CLIP_FLOOR, CLIP_KNEE)
+        chain = -gap_mean * ratio_slope * gap_slope
+        bend = -gap_mean * (ratio_slope * gap_curvature - gap_mean * ratio_curvature * gap_slope**2 / kappa_mean)
+        return LocalCurvature(bend * dx_a * dx_a + chain * ddx_a, bend * dx_a * dx_b, bend * dx_b * dx_b + chain * ddx_b)
 
     def local_at(self, theta_a: float, theta_b: float) -> LocalGap:
         """:meth:`local` at one pair of angles, as floats: the compiled twin the integrator calls."""

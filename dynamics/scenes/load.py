@@ -325,7 +325,19 @@ def _contact(raw: Mapping[str, Any], apparatus: Apparatus | None, groups: Groups
                    f"{spec('contact.psi').allowed()}, or groups.delta_over_a > 0")
             raise SceneError(msg)
         values["psi"] = math.atan(math.tan(values.pop("friction_angle")) / groups.delta_over_a)
-    contact = Contact(**values)
+    if _either(values, "contact", "static_friction_angle", "psi_static") == "static_friction_angle":
+        if groups.delta_over_a == 0.0:
+            msg = ("contact.static_friction_angle is scaled by a/delta, but this scene has groups.delta_over_a = "
+                   f"0: give contact.psi_static {spec('contact.psi_static').allowed()}, or groups.delta_over_a > 0")
+            raise SceneError(msg)
+        values["psi_static"] = math.atan(math.tan(values.pop("static_friction_angle")) / groups.delta_over_a)
+    try:
+        contact = Contact(**values)
+    except ValueError as err:
+        raise SceneError(f"contact.{err}") from err
+    if contact.friction_law == "stribeck" and contact.psi_static is None:
+        raise _missing(["contact.psi_static"], "Stribeck friction (contact.friction_law = 'stribeck') needs its "
+                                               "static angle; give contact.psi_static or contact.static_friction_angle")
     if contact.roughness_amplitude > 0.0 and contact.roughness_correlation is None:
         raise _missing(["contact.roughness_correlation"],
                        "a rough surface (contact.roughness_amplitude > 0) needs its correlation length")

@@ -6,7 +6,8 @@ converts and checks TOML values with it, the dataclasses check themselves with
 it when built from Python, the resolved scene writes its help as comments, and
 the documentation's scene reference is generated from :data:`SECTIONS`. Keys a
 scene may give instead of a field (``apparatus.preset``, ``apparatus.rho_a``,
-``contact.sigma``, ``contact.friction_angle``, ``run.t_end_tau``) are listed in
+``contact.sigma``, ``contact.friction_angle``, ``contact.static_friction_angle``,
+``run.t_end_tau``) are listed in
 :data:`ALTERNATIVE_KEYS` next to the field they stand for.
 """
 
@@ -18,6 +19,8 @@ import sys
 from dataclasses import dataclass, field
 
 from dynamics.apparatus import DENSITY, PRESETS, Apparatus
+from dynamics.contact.laws import CONTACT_LAWS, FRICTION_LAWS, HEIGHTS
+from dynamics.contact.roughness import SPECTRA
 from dynamics.equations.full import FRAME_TERMS
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
@@ -126,7 +129,12 @@ class Contact:
 
     A scene gives the minimum gap as ``sigma`` (a length) or ``kappa_star``,
     and friction as the physical ``friction_angle`` psi_hat or the scaled
-    ``psi``, tan psi = (a/delta) tan psi_hat; both are resolved to the fields.
+    ``psi``, tan psi = (a/delta) tan psi_hat; both are resolved to the fields,
+    as the static angle of Stribeck friction is (``static_friction_angle`` or
+    ``psi_static``). The minimum gap varies along the surfaces when
+    ``roughness_amplitude`` > 0 (:mod:`dynamics.contact.roughness`), in either
+    equations; the compliant contact and Stribeck friction
+    (:mod:`dynamics.contact.laws`) are the full equations' only.
     """
 
     kappa_star: float = key(help="eccentricity at which the asperities touch, 1 - sigma/delta", low=0.0,
@@ -139,9 +147,41 @@ class Contact:
                                               bounds="()", example="1 mm", reduced_unit="b", none="none")
     seed: int = key(0, help="seed of the random roughness: the same seed gives the same surfaces", low=0,
                     integer=True)
+    roughness_spectrum: str = key("gaussian", help="spectrum of the heights along each surface: 'gaussian', or "
+                                                   "'self-affine' (flat below 1/correlation, k^-(1 + 2 H) above)",
+                                  choices=SPECTRA)
+    roughness_hurst: float = key(0.8, help="Hurst exponent H of a self-affine spectrum", low=0.0, high=1.0,
+                                 bounds="()")
+    roughness_bandwidth: float = key(10.0, help="a self-affine spectrum's cutoff wavenumber over its roll-off "
+                                                "1/correlation: the shortest wavelength is correlation/bandwidth",
+                                     low=1.0, high=1e4, bounds="[]")
+    law: str = key("hard", help="the normal contact: 'hard' (section 5's wall of asperities, impacts and "
+                                "phases) or 'compliant' (a Greenwood-Williamson load and damping; full "
+                                "equations)", choices=CONTACT_LAWS)
+    heights: str = key("exponential", help="compliant contact: distribution of the asperity summit heights",
+                       choices=HEIGHTS)
+    stiffness: float | None = key(None, help="compliant contact: stiffness -dP/dd where the summits touch; "
+                                             "'none': 1000 m'_a g / sigma", dimension="[mass] / [time] ** 2",
+                                  unit="N/m", low=0.0, bounds="()", example="1e6 N/m", none="none")
+    damping_ratio: float = key(1.0, help="compliant contact: damping of its radial oscillation, 1 critical",
+                               low=0.0, high=100.0, bounds="[]")
+    slip_velocity: float = key(1e-5, help="compliant contact: slip speed below which the friction fades "
+                                          "(its regularisation)", dimension="[length] / [time]", unit="m/s",
+                               low=0.0, bounds="()", example="10 um/s")
+    friction_law: str = key("coulomb", help="'coulomb' (psi) or 'stribeck' (falling from psi_static to psi "
+                                            "over stribeck_velocity; full equations)", choices=FRICTION_LAWS)
+    psi_static: float | None = key(None, help="Stribeck friction: scaled static friction angle, at least psi",
+                                   **_FRICTION, none="none")
+    stribeck_velocity: float = key(1e-3, help="Stribeck friction: slip speed over which friction falls to "
+                                              "its kinetic value", dimension="[length] / [time]", unit="m/s",
+                                   low=0.0, bounds="()", example="1 mm/s")
 
     def __post_init__(self):
         check_fields(self)
+        if self.psi_static is not None and not self.psi_static >= self.psi:
+            msg = (f"psi_static must be in [psi, 90) deg = [{math.degrees(self.psi):g}, 90) deg: static friction "
+                   f"is at least the kinetic, got {math.degrees(self.psi_static):g} deg")
+            raise ValueError(msg)
 
 
 @dataclass(frozen=True)
@@ -254,6 +294,8 @@ ALTERNATIVE_KEYS: dict[tuple[str, str], Key] = {
     ("contact", "sigma"): Key(help="the asperities' gap, instead of kappa_star = 1 - sigma/delta",
                               dimension="[length]", unit="m", low=0.0, bounds="()", example="50 um"),
     ("contact", "friction_angle"): Key(help="physical friction angle psi_hat, instead of psi", **_FRICTION),
+    ("contact", "static_friction_angle"): Key(help="physical static friction angle, instead of psi_static",
+                                              **_FRICTION),
     ("run", "t_end_tau"): Key(help="duration in units of tau, instead of t_end", unit="tau", low=0.0,
                               bounds="()"),
     ("run", "output_interval_tau"): Key(help="output interval in units of tau, instead of output_interval",
@@ -262,7 +304,8 @@ ALTERNATIVE_KEYS: dict[tuple[str, str], Key] = {
 
 #: Pairs of keys that say the same thing: a scene gives one, and an override of one replaces the other.
 ALTERNATIVES = (("apparatus", "m_a", "rho_a"), ("contact", "sigma", "kappa_star"),
-                ("contact", "friction_angle", "psi"), ("run", "t_end", "t_end_tau"),
+                ("contact", "friction_angle", "psi"), ("contact", "static_friction_angle", "psi_static"),
+                ("run", "t_end", "t_end_tau"),
                 ("run", "output_interval", "output_interval_tau"))
 
 _SECTION_CLASSES = {"groups": Groups, "initial": Initial, "model": Model, "contact": Contact,
