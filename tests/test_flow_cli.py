@@ -176,6 +176,8 @@ BAD = [
      "run.snapshot_times and run.snapshot_interval say the same thing"),
     ("too coarse a grid", "omega_a = 1.0", "n_theta = 4",
      "run.n_theta must be in [8, 1024], or 'auto', got 4"),
+    ("a grid whose factorisation fills the memory", "omega_a = 1.0", "n_theta = 1024\nn_r = 64",
+     "run.n_theta = 1024 and run.n_r = 64 need 2.42 GB for each factorisation"),
     ("an unknown frame", "omega_a = 1.0", "frame = 'inner'", "run.frame must be one of 'lab', 'outer', got 'inner'"),
     ("an unknown section", "omega_a = 1.0\n[incline]\nalpha = 0.1", "",
      "unknown section [incline]; allowed sections of a motion file: [apparatus], [fluid], [run], [motion]"),
@@ -186,8 +188,9 @@ BAD = [
 def test_bad_motion_files_exit_2_naming_the_key_and_write_nothing(tmp_path, capsys, motion, run, words):
     # n_theta and n_r are given once by motion_file; a case that sets its own replaces them
     path = motion_file(tmp_path, motion, run)
-    if "n_theta" in run:
-        path.write_text(path.read_text().replace("n_theta = 8\n", "", 1))
+    for name in ("n_theta", "n_r"):
+        if name in run:
+            path.write_text(path.read_text().replace(f"{name} = 8\n", "", 1))
     code, out, err = snail(capsys, path, "-o", tmp_path / "out")
     assert code == 2, err
     assert words in err and err.startswith("snail flow: error: ") and "Traceback" not in err and not out

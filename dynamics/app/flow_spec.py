@@ -62,13 +62,17 @@ from lubrication.unsteady import (
 from lubrication.unsteady.snapshots import FRAMES
 from numerics.keys import Key
 
-__all__ = ["EXAMPLE", "FLOW_SECTIONS", "HARMONIC_ENTRIES", "MAX_SNAPSHOTS", "FlowSpec", "load_motion",
-           "parse_motion", "turned_angle"]
+__all__ = ["EXAMPLE", "FLOW_SECTIONS", "HARMONIC_ENTRIES", "MAX_LU_BYTES", "MAX_SNAPSHOTS", "FlowSpec",
+           "load_motion", "parse_motion", "turned_angle"]
 
 #: The example motion, shipped as package data: what ``snail flow`` runs without a file.
 EXAMPLE = "flow_example.toml"
 #: Most snapshots a run may ask for: each is a VTU file and a frame of the animation (0.1-0.3 s to draw).
 MAX_SNAPSHOTS = 1000
+#: Largest banded LU factorisation of the solver a motion file may ask for (bytes): its band of
+#: 9 (2 n_r) rows over n_theta 2 n_r columns of complex numbers, 576 n_r^2 n_theta bytes
+#: (lubrication/unsteady/operator.py), and a step may hold two.
+MAX_LU_BYTES = 2e9
 
 _TIME = {"dimension": "[time]", "unit": "s", "example": "0.5 s"}
 _POSITION = {"dimension": "[length]", "unit": "m", "low": -10.0, "high": 10.0, "example": "1.5 mm"}
@@ -171,7 +175,7 @@ class FlowSpec:
     @property
     def largest_wall_speed(self) -> float:
         """The largest speed of a wall in the frame translating with B (m/s): |U_A|, |Omega_a| a, |Omega_b| b."""
-        t = np.linspace(0.0, self.t_end, 4001)
+        t = np.linspace(0.0, self.t_end, _samples(self.motion, self.t_end))
         m = self.motion
         return float(np.max([np.abs(m.x_a.rate(t) + 1j * m.z_a.rate(t)), np.abs(m.omega_a.value(t)) * self.a,
                              np.abs(m.omega_b.value(t)) * self.b]))
@@ -289,11 +293,16 @@ def _harmonic(name: str, raw: Any) -> Harmonic:
     return Harmonic(**entries)
 
 
+def _samples(motion: PrescribedMotion, t_end: float) -> int:
+    """Samples of [0, t_end] that find a largest value of the motion: 64 a period of the fastest part."""
+    periods = motion.fastest() * t_end / (2.0 * math.pi)
+    return int(min(max(4001, 64 * periods), 2_000_000))
+
+
 def _reach(motion: PrescribedMotion, a: float, b: float, t_end: float) -> tuple[float, float]:
     """The largest |A - B| over [0, t_end] and when; refused beyond the solver's narrowest gap."""
-    # the solver's own search samples [0, t_end] then refines: ask for 64 samples a period
-    periods = motion.fastest() * t_end / (2.0 * math.pi)
-    eps_max, t_max = motion.largest_eccentricity(t_end, samples=int(min(max(4001, 64 * periods), 2_000_000)))
+    # the solver's own search samples [0, t_end], then refines the largest sample
+    eps_max, t_max = motion.largest_eccentricity(t_end, samples=_samples(motion, t_end))
     delta = b - a
     reach = (1.0 - MIN_ONE_MINUS_KAPPA_UNSTEADY) * delta
     if eps_max > reach:
@@ -356,6 +365,11 @@ def _build(raw: dict[str, Any], source: str) -> FlowSpec:
     settings = {**_DEFAULTS, **run}
     n_theta, n_r = settings["n_theta"], settings["n_r"]
     given = n_theta is not None and n_r is not None
+    if given and 576 * n_r**2 * n_theta > MAX_LU_BYTES:
+        msg = (f"run.n_theta = {n_theta} and run.n_r = {n_r} need {576e-9 * n_r**2 * n_theta:.3g} GB for each "
+               f"factorisation of the solver's banded matrix (576 n_r^2 n_theta bytes), more than "
+               f"{MAX_LU_BYTES * 1e-9:g} GB: give fewer points")
+        raise SceneError(msg)
     if not given:
         # the solver's default for the most eccentric position (run_prescribed's rule)
         position = motion.position(t_max)
