@@ -85,8 +85,8 @@ FLOW_SECTIONS: dict[str, dict[str, Key]] = {
     "fluid": {name: SECTIONS["fluid"][name] for name in ("nu", "rho")},
     "run": {
         "t_end": Key(help="duration of the motion, from the fluid at rest at t = 0", low=0.0, bounds="()", **_TIME),
-        "rtol": Key(help="relative local error per step of the solver's step control", low=1e-10, high=0.1,
-                    bounds="[]"),
+        "rtol": Key(help="relative local error per step of the solver's step control (default 1e-4)", low=1e-10,
+                    high=0.1, bounds="[]"),
         "n_theta": Key(help="grid points around the annulus (default: as many as the motion's most eccentric "
                             "position needs)", integer=True, low=8, high=1024, none="auto"),
         "n_r": Key(help="Chebyshev points across the gap, walls included (default 16)", integer=True, low=4,
@@ -94,9 +94,10 @@ FLOW_SECTIONS: dict[str, dict[str, Key]] = {
         "snapshot_times": Key(help="times of the flow snapshots, a list", low=0.0, bounds="[)", **_TIME),
         "snapshot_interval": Key(help="snapshots at t = 0, T, 2T, ... up to t_end, instead of snapshot_times",
                                  low=0.0, bounds="()", **_TIME),
-        "animation": Key(help="an animation of the snapshots, flow.gif, or none", choices=("gif", "none")),
-        "frame": Key(help="frame of the animation: 'lab' translates with B, 'outer' turns with the outer "
-                          "cylinder", choices=FRAMES),
+        "animation": Key(help="an animation of the snapshots, flow.gif (the default), or none",
+                         choices=("gif", "none")),
+        "frame": Key(help="frame of the animation: 'lab' (the default) translates with B, 'outer' turns with the "
+                          "outer cylinder", choices=FRAMES),
     },
     "motion": {
         "x_a": Key(help="position of the inner centre A relative to B, down the slope", **_POSITION),
@@ -109,7 +110,7 @@ FLOW_SECTIONS: dict[str, dict[str, Key]] = {
 _FREQUENCY = Key(help="angular frequency", dimension="1 / [time]", unit="rad/s", low=0.0, high=MAX_RATE,
                  example="5 rad/s")
 _PHASE = Key(help="phase at t = 0", unit="deg", scale=math.pi / 180.0, low=-1e6, high=1e6, example="90 deg")
-#: The entries of a motion table, each read with the key of its quantity (None) or its own.
+#: The entries of a motion table (each 0 when missing), read with the key of their quantity (None) or their own.
 HARMONIC_ENTRIES: dict[str, Key | None] = {"mean": None, "amplitude": None, "omega": _FREQUENCY, "phase": _PHASE}
 
 # pint reads a hertz as 1/s, so "2 Hz" would pass as 2 rad/s, not 4 pi rad/s
