@@ -16,11 +16,20 @@ that solves the new flow and the new wall velocities in one linear system.
     timestepping.py  variable-step BDF2 coefficients, predictor, error estimate, step law
     solver.py        UnsteadySolver: state, start, step
     prescribed.py    run_prescribed: prescribed wall motions from rest, time series and snapshots
+    snapshots.py     snapshots as VTU files for ParaView, pictures and GIF animations
 """
 
 from .mapping import MIN_ONE_MINUS_KAPPA_UNSTEADY, AnnulusMap
 from .prescribed import Harmonic, PrescribedMotion, PrescribedRun, run_prescribed
 from .resolution import Resolution, default_resolution
+from .snapshots import (
+    FRAMES,
+    animate,
+    draw_frame,
+    flow_mesh,
+    in_frame,
+    write_vtu_series,
+)
 from .solver import (
     LOAD_NAMES,
     VELOCITY_NAMES,
@@ -35,3 +44,4 @@ from .timestepping import Bdf
 __all__ = ["LOAD_NAMES", "MIN_ONE_MINUS_KAPPA_UNSTEADY", "VELOCITY_NAMES", "AnnulusMap", "Bdf", "FlowLevel",
            "Harmonic", "PrescribedMotion", "PrescribedRun", "Resolution", "StepControl", "StepResult",
            "UnsteadySolver", "default_resolution", "prescribed_wall", "run_prescribed"]
+__all__ += ["FRAMES", "animate", "draw_frame", "flow_mesh", "in_frame", "write_vtu_series"]
