@@ -149,7 +149,13 @@ snail_api_groups = [
     ("Equations of motion", [
         "dynamics.equations", "dynamics.equations.full", "dynamics.equations.reduced",
         "dynamics.equations.special", "dynamics.equations.limits",
-        "dynamics.equations.film",
+        "dynamics.equations.film", "dynamics.equations.navier_stokes",
+    ]),
+    ("Unsteady Navier-Stokes flow in the gap", [
+        "lubrication.unsteady", "lubrication.unsteady.mapping", "lubrication.unsteady.spectral",
+        "lubrication.unsteady.operator", "lubrication.unsteady.system", "lubrication.unsteady.timestepping",
+        "lubrication.unsteady.walls", "lubrication.unsteady.resolution", "lubrication.unsteady.solver",
+        "lubrication.unsteady.prescribed", "lubrication.unsteady.energy", "lubrication.unsteady.snapshots",
     ]),
     ("Rough contact", [
         "dynamics.contact", "dynamics.contact.reduced", "dynamics.contact.full", "numerics.hybrid",
@@ -170,5 +176,6 @@ snail_api_groups = [
         "dynamics.app.sweeps.batch", "dynamics.app.sweeps.store", "dynamics.app.sweeps.run",
         "dynamics.app.sweeps.plot", "dynamics.app.command", "dynamics.app.commands", "dynamics.app.commands.forces", "dynamics.app.commands.run",
         "dynamics.app.commands.sweep", "dynamics.app.commands.fit", "dynamics.fit",
+        "dynamics.app.flow_spec", "dynamics.app.flow_run", "dynamics.app.commands.flow",
     ]),
 ]
