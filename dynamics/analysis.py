@@ -74,7 +74,7 @@ def rolling_statistics(trajectory, t_settle: float) -> tuple[float, float, float
     Parameters
     ----------
     trajectory : dynamics.simulation.Trajectory
-        A dimensionless contact run (``simulate`` with :class:`ReducedParams`),
+        A dimensionless contact run (``simulate`` with :class:`~dynamics.equations.reduced.ReducedParams`),
         whose X_b is in b: times in tau, rates in 1/tau.
     t_settle : float
         Start of the average (tau), before the end of the run.

@@ -11,8 +11,7 @@ approximate Bayesian computation (ABC):
 
 1. **Summary statistics** of a record (:func:`summary_statistics`): the mean
    speed over the record after its first tenth (log), the spread of the speed
-   about it (the coefficient of variation of the speed over windows of
-   :data:`SPEED_WINDOW` of the record), the power of the speed's fluctuation at
+   about it (its coefficient of variation over the same part), the power of the speed's fluctuation at
    the distances rolled 2 pi a and 2 pi b, where the features of the inner and
    the outer surface recur, relative to its whole power, and the correlation of
    the speed's fluctuation with itself one inner and one outer turn later.
@@ -38,6 +37,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.special import expit, logit
 
 __all__ = ["STATISTICS", "FitResult", "Prior", "abc_posterior", "coverage", "fit", "read_fit_scene", "read_record",
            "reference_table", "simulate_record", "summary_statistics"]
@@ -76,11 +76,11 @@ class Prior:
         """The parameter mapped onto the real line (logit of its place in the prior's range)."""
         lo, hi, x = ((math.log(self.low), math.log(self.high), np.log(x)) if self.log else (self.low, self.high, x))
         u = np.clip((x - lo) / (hi - lo), 1e-12, 1.0 - 1e-12)
-        return np.log(u / (1.0 - u))
+        return logit(u)
 
     def from_free(self, y: np.ndarray) -> np.ndarray:
         lo, hi = (math.log(self.low), math.log(self.high)) if self.log else (self.low, self.high)
-        x = lo + (hi - lo) / (1.0 + np.exp(-y))
+        x = lo + (hi - lo) * expit(y)  # the logistic function without overflow at large |y|
         return np.exp(x) if self.log else x
 
 

@@ -194,7 +194,7 @@ class Trajectory:
 class Recorder:
     """The settings every model's run shares, and the conversion of its scaled rows (t in tau, rates in 1/tau,
     X_b in b) into a :class:`Trajectory`: a model's run (:mod:`dynamics.simulation`, :mod:`dynamics.equations.film`)
-    integrates, and hands its rows to :meth:`trajectory` or :meth:`contact_trajectory`."""
+    integrates, and hands its rows to :meth:`trajectory` or :meth:`Recorder.contact_trajectory`."""
 
     def __init__(self, system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress,
                  frame_terms="paper"):
@@ -207,6 +207,7 @@ class Recorder:
         self.inertia_corrected = False  # forces with the first inertial correction (full equations)
 
     def contact_trajectory(self, fields: dict, equations: str, forces: str, params) -> Trajectory:
+        """As :meth:`trajectory`, from the fields of a contact run (its stop event and status code)."""
         fields = dict(fields, stop=fields["stop_event"], status_code=fields["status"])
         trajectory = self.trajectory(fields, equations, forces, params)
         trajectory.info.update(phase_codes=PHASE_CODES, final_phase=str(fields["phase"][-1]),

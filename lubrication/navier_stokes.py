@@ -689,7 +689,7 @@ def build_error_table(kappa_nodes, delta_nodes, **mesh) -> np.ndarray:
     """Solve :func:`first_inertial_correction` on a grid; shape (nk, nd, 5): the table of
     :mod:`lubrication.inertia_table`, which ``generators/inertia_table.py`` writes.
 
-    A node at kappa = 0 is solved at :data:`KAPPA_AXIS`. ``mesh`` goes to the solver.
+    A node at kappa = 0 is solved at :data:`lubrication.inertia.KAPPA_AXIS`. ``mesh`` goes to the solver.
     """
     table = np.zeros((len(kappa_nodes), len(delta_nodes), len(TABLE_COLUMNS)))
     for i, k in enumerate(kappa_nodes):

@@ -168,7 +168,7 @@ def test_snail_fit_writes_its_estimates_and_refuses_bad_input(tmp_path, capsys):
     raw, priors = read_fit_scene(FIT_SCENE)
     times = np.linspace(0.0, 5.0, 200)
     record = simulate_record(raw, priors, [0.3], 12345, times)
-    (tmp_path / "data.csv").write_text("t,x_b\n" + "".join(f"{t!r},{x!r}\n" for t, x in zip(times, record)))
+    (tmp_path / "data.csv").write_text("t,x_b\n" + "".join(f"{float(t)!r},{float(x)!r}\n" for t, x in zip(times, record)))
     (tmp_path / "scene.toml").write_text(FIT_SCENE)
     out = tmp_path / "out"
     code = main(["fit", str(tmp_path / "data.csv"), str(tmp_path / "scene.toml"), "-o", str(out), "--draws", "24",

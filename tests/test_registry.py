@@ -148,6 +148,13 @@ def test_compositions_a_model_takes_give_its_forces():
 
 
 def test_a_motion_whose_forces_overflow_is_refused():
-    near = Annulus(a=A, b=B, length=0.1, one_minus_kappa=1e-9)
-    with pytest.raises(ValueError, match="overflow a double"):
-        registry.fluid_forces(near, Motion(chi_dot=1e308, omega_a=-1e308), PRESET_FLUID, "stokes-exact")
+    """A rate whose forces would overflow never reaches a model; a model whose forces are not numbers is refused."""
+    with pytest.raises(ValueError, match=r"chi_dot must be in \[-1e\+06, 1e\+06\]"):
+        Motion(chi_dot=1e308, omega_a=-1e308)
+    registry.register(ForceModelSpec("infinite", "forces that overflow, a test's model",
+                                     lambda annulus, motion, fluid: FluidForces(math.inf, 0.0, 0.0, model="infinite")))
+    try:
+        with pytest.raises(ValueError, match="overflow a double"):
+            registry.fluid_forces(ANNULUS, MOTION, PRESET_FLUID, "infinite")
+    finally:
+        registry.unregister("infinite")

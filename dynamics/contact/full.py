@@ -10,7 +10,7 @@ centre. In (2.1)-(2.3) the contact force adds to the fluid force,
 f_eps -> f_eps - N, f_chi -> f_chi + F, and its torque about A to the fluid's,
 T_a -> T_a + a F. (2.4), the angular momentum of the whole device about its
 contact with the plane, holds unchanged: the contact force is internal. So the
-accelerations are those of :func:`dynamics.equations.full.rhs` with these forces added,
+accelerations are those of the ``rhs`` of :func:`dynamics.equations.full.model_functions` with these forces added,
 through the same linear map :func:`dynamics.equations.full.force_response`; nothing of
 (2.1)-(2.4) is derived twice.
 

@@ -81,7 +81,7 @@ the integrator's tolerance, not to rounding.
 
 Power. The reaction's power is N G' = 0 in contact; the friction's is F s.
 (2.1)-(2.4) make the mechanical energy of
-:func:`validation.dynamics_checks.mechanical_energy` change at the power of
+:func:`dynamics.analysis.mechanical_energy` change at the power of
 the forces between the cylinders, so a hard rough run dissipates in the
 film (:func:`fluid_dissipation`), by friction and at the impacts.
 
@@ -594,7 +594,7 @@ class RoughFullRun:
 
     # rates and states in Python --------------------------------------------------------------------
     def rates(self, y, locked: bool, sigma: float) -> np.ndarray:
-        """:func:`_contact_rates` of a contact state ``y``: chi'', Omega_a', Omega_b', N, F, eps*', kappa*, 1 - kappa*."""
+        """``_contact_rates`` of a contact state ``y``: chi'', Omega_a', Omega_b', N, F, eps*', kappa*, 1 - kappa*."""
         return self.functions.rates(np.asarray(y, float), self.p, self.contact_args(locked, sigma)[3], locked,
                                     sigma, self.model)
 

@@ -16,7 +16,7 @@ crossed the cells' faces along a run. The stops are those of the full model
 The film's right-hand side is Lipschitz and piecewise smooth (a node's switch
 between cavitated and pressed is a kink), and stiff: the relaxation of a pressed
 node's void, 1/tau_r, and the film's own Poiseuille modes. The Jacobian is by
-central differences (as :func:`dynamics.equations.full.jacobian`); a void's step
+central differences (as the ``jacobian`` of :func:`dynamics.equations.full.model_functions`); a void's step
 is a fixed tiny area, so that a probe of a pressed node (v = 0) stays on the
 smooth side of its switch.
 

@@ -44,7 +44,7 @@ one (~ zeta^3), so the simplified Newton iteration of Radau IIA converges only
 for steps in which the line of centres hardly turns (measured: 10-30 times the
 steps of BDF from 1 - kappa = 1e-4, no progress at 1e-7). A free run therefore
 carries, once |u| exceeds :data:`POLAR_ABOVE`, the velocity in the frame of the
-line of centres (:func:`polar_rhs`): q_r = d|u|/dt = kappa'/zeta^3 and
+line of centres (``polar_rhs`` (:func:`model_functions`)): q_r = d|u|/dt = kappa'/zeta^3 and
 q_t = |u| chi', in which the squeeze force is linear,
 
     eps' = delta q_r / s^3,   eps chi' = delta q_t / s,   s = sqrt(1 + |u|^2),
@@ -97,7 +97,7 @@ __all__ = [
 ]
 
 STATE_NAMES = ("u_x", "u_z", "v_x", "v_z", "omega_a", "omega_b", "x_b")
-#: The state near contact (:func:`polar_rhs`): the velocity in the frame of the line of centres.
+#: The state near contact (``polar_rhs`` (:func:`model_functions`)): the velocity in the frame of the line of centres.
 POLAR_STATE_NAMES = ("u_x", "u_z", "q_r", "q_t", "omega_a", "omega_b", "x_b")
 #: |u| = kappa/zeta above which a free run carries the polar velocity (kappa = 0.894), and below which
 #: it returns to the Cartesian one (kappa = 0.707): apart, so that a run near either does not chatter.
@@ -294,7 +294,7 @@ def _polar_rhs(t, y, args):
 
 
 def to_polar(apparatus, y: np.ndarray) -> np.ndarray:
-    """A state of :func:`rhs` (Cartesian velocity) as one of :func:`polar_rhs`; needs |u| > 0."""
+    """A state of ``rhs`` (:func:`model_functions`) (Cartesian velocity) as one of ``polar_rhs`` (:func:`model_functions`); needs |u| > 0."""
     big_u = math.hypot(y[0], y[1])
     s = math.sqrt(1.0 + big_u * big_u)
     ex, ez = y[0] / big_u, y[1] / big_u
@@ -305,7 +305,7 @@ def to_polar(apparatus, y: np.ndarray) -> np.ndarray:
 
 
 def to_cartesian(apparatus, y: np.ndarray) -> np.ndarray:
-    """A state of :func:`polar_rhs` as one of :func:`rhs`."""
+    """A state of ``polar_rhs`` (:func:`model_functions`) as one of ``rhs`` (:func:`model_functions`)."""
     big_u = math.hypot(y[0], y[1])
     s = math.sqrt(1.0 + big_u * big_u)
     ex, ez = y[0] / big_u, y[1] / big_u
@@ -406,7 +406,7 @@ def _reynolds(kappa, chi_dot, omega_a, omega_b, args):
 
 @jit(inline="always")
 def reduced_reynolds(y, args):
-    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of a state ``y`` of :func:`rhs`.
+    """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of a state ``y`` of ``rhs`` (:func:`model_functions`).
 
     The Reynolds number of the flow relative to the line of centres, which
     measures the error of quasi-steady Stokes forces (:mod:`lubrication.inertia`),
@@ -450,7 +450,7 @@ POLAR_EVENT_NAMES = (*EVENT_NAMES, "to_cartesian")
 
 @jit
 def cartesian_events(t, y, args):
-    """:func:`events` and |u| - POLAR_ABOVE (rising through 0: the run goes on in :func:`polar_rhs`)."""
+    """:func:`events` and |u| - POLAR_ABOVE (rising through 0: the run goes on in ``polar_rhs`` (:func:`model_functions`))."""
     g = np.empty(6)
     big_u = math.hypot(y[0], y[1])
     _event_values(y, args, big_u, reduced_reynolds(y, args), g)
@@ -460,7 +460,7 @@ def cartesian_events(t, y, args):
 
 @jit
 def polar_events(t, y, args):
-    """:data:`POLAR_EVENT_NAMES` of a state of :func:`polar_rhs`; |u| - CARTESIAN_BELOW falls through 0 to return."""
+    """:data:`POLAR_EVENT_NAMES` of a state of ``polar_rhs`` (:func:`model_functions`); |u| - CARTESIAN_BELOW falls through 0 to return."""
     g = np.empty(6)
     big_u = math.hypot(y[0], y[1])
     kappa = big_u / math.sqrt(1.0 + big_u * big_u)
@@ -472,7 +472,7 @@ def polar_events(t, y, args):
 def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
              frame_terms: str = "paper") -> tuple:
-    """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events` for a run.
+    """The ``args`` of ``rhs`` (:func:`model_functions`), ``jacobian`` and :func:`events` for a run.
 
     (parameters, force model data, typical scales, event parameters): the gap-floor
     event at 1 - kappa = ``gap_floor``, the Reynolds event at ``max_reynolds``, the
@@ -544,7 +544,7 @@ def observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
 
 
 def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.ndarray]:
-    """As :func:`observables`, from states of :func:`polar_rhs`."""
+    """As :func:`observables`, from states of ``polar_rhs`` (:func:`model_functions`)."""
     big_u = np.hypot(y[0], y[1])
     s = np.sqrt(1.0 + big_u**2)
     return observables(apparatus, np.vstack([y[:2], np.zeros((2, y.shape[1])), y[4:]]), phi0) | {
@@ -552,7 +552,7 @@ def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.nda
 
 
 def model_arguments(force_model: KernelModel) -> np.ndarray:
-    """The force model's data as :func:`rhs` takes them (``args[1]``)."""
+    """The force model's data as ``rhs`` (:func:`model_functions`) takes them (``args[1]``)."""
     return force_model.data
 
 

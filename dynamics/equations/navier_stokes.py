@@ -36,7 +36,8 @@ per step, the added mass inside it, stable at any density ratio.
 Checks of the laws (tests/test_navier_stokes_coupled.py): everything locked in rigid
 rotation rolls as one body of moment I_B + I_f + I_a + M b^2 about the contact line;
 with the fluid's density taken to zero they become the full ODE model with the Stokes
-forces; the energy balance of :func:`energy_budget`.
+forces; the energy balance of :func:`energy_columns` with
+:func:`lubrication.unsteady.energy.flow_energy`.
 
 What the ODE models differ in: (2.4) drops the fluid's own angular momentum and the
 end fluid's moment of inertia, and (2.1)-(2.2) close the fluid's inertia with m_eff
@@ -151,7 +152,7 @@ def navier_stokes_run(run, initial: Initial, options: NavierStokesOptions = Navi
     The :class:`~dynamics.trajectory.Trajectory` adds the columns ``f_eps``, ``f_chi`` (N), ``T_a``, ``T_b``
     (N m): the fluid's dynamic loads over the whole length; ``kinetic_energy``, ``potential_energy`` and
     ``dissipated`` (J, :func:`energy_columns`), whose sum stays constant; ``info["navier_stokes"]`` the grid, the counts
-    and, with ``snapshot_times``, ``info["snapshots"]``: the fields (:meth:`UnsteadySolver.fields`) with
+    and, with ``snapshot_times``, ``info["snapshots"]``: the fields (:meth:`lubrication.unsteady.solver.UnsteadySolver.fields`) with
     ``t`` and the outer cylinder's turn ``theta_b`` (rad).
     """
     from lubrication.unsteady import (

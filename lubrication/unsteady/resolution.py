@@ -30,7 +30,7 @@ eccentricity (the bipolar structure of the exact solution); 8 points give the St
 loads to 1e-8. Impulsive starts (boundary layers of thickness sqrt(nu t)) need more at
 early times: see the Couette spin-up test.
 
-Reach. Below 1 - kappa = 1e-5 (:data:`MIN_ONE_MINUS_KAPPA_UNSTEADY`) the Stokes loads
+Reach. Below 1 - kappa = 1e-5 (:data:`lubrication.unsteady.mapping.MIN_ONE_MINUS_KAPPA_UNSTEADY`) the Stokes loads
 still come out (1e-5 of T_b per W_a at 1e-7), but the unsteady runs above scatter by
 0.5% at 1e-6 and by 20% at 1e-7.
 """

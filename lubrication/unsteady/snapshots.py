@@ -1,7 +1,7 @@
 r"""Flow snapshots of the unsteady solver: VTU files for ParaView, pictures and animations.
 
-A snapshot is the mapping :meth:`UnsteadySolver.fields` returns (``t`` added by
-:func:`run_prescribed`): ``x``, ``z`` (m), ``vorticity`` (1/s, clockwise positive),
+A snapshot is the mapping :meth:`lubrication.unsteady.solver.UnsteadySolver.fields` returns (``t`` added by
+:func:`lubrication.unsteady.prescribed.run_prescribed`): ``x``, ``z`` (m), ``vorticity`` (1/s, clockwise positive),
 ``stream_function`` (m^2/s), ``u_x``, ``u_z`` (m/s), each of shape (n_r, n_theta), in the
 frame translating with the outer centre B. Row 0 lies on the outer wall and the last row
 on the inner one (Chebyshev-Lobatto points across the gap); the columns are the
@@ -160,7 +160,7 @@ def in_frame(snapshot: Mapping, frame: str = "lab", theta_b: float = 0.0, omega_
     Parameters
     ----------
     snapshot : mapping
-        As :meth:`UnsteadySolver.fields` (any grid of points, such as :func:`refined`'s).
+        As :meth:`lubrication.unsteady.solver.UnsteadySolver.fields` (any grid of points, such as :func:`refined`'s).
     frame : {"lab", "outer"}
     theta_b : float
         Angle the outer cylinder has turned since t = 0 (rad, clockwise); "outer" only.
@@ -298,7 +298,7 @@ def draw_frame(snapshot: Mapping, ax=None, *, frame: str = "lab", theta_b: float
     Parameters
     ----------
     snapshot : mapping
-        As :meth:`UnsteadySolver.fields`, with its time ``t`` (s) if it is to be shown.
+        As :meth:`lubrication.unsteady.solver.UnsteadySolver.fields`, with its time ``t`` (s) if it is to be shown.
     ax : matplotlib Axes or None
         Where to draw; default a new figure's (not shown: save it with ``ax.figure.savefig``).
     frame, theta_b, omega_b

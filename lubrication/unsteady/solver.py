@@ -439,7 +439,7 @@ class UnsteadySolver:
         return x, s, loads, factorised, sweeps
 
     def step(self, dt: float, wall, z_new: complex | None = None, *, control_motion: bool | None = None) -> StepResult:
-        """Attempt one step of size ``dt``; on success append the new level (see :meth:`_step`)."""
+        """Attempt one step of size ``dt``; on success append the new level (see ``_step``)."""
         with one_blas_thread():
             return self._step(dt, wall, z_new, control_motion)
 

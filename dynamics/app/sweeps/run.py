@@ -131,9 +131,11 @@ def _client(scheduler: str | None, workers: int):
         except (OSError, ValueError, TypeError) as err:
             msg = f"--scheduler {scheduler!r}: cannot reach a dask scheduler there ({type(err).__name__}: {err})"
             raise SweepError(msg) from err
-    # dashboard on any free port: 8787 may belong to another cluster on this machine
+    # dashboard on any free port: 8787 may belong to another cluster on this machine; the workers' own
+    # logs stay quiet (a point's failure is a row, a lost worker an exception here), so that a worker busy
+    # compiling when Ctrl-C closes the scheduler prints no traceback of its missed heartbeat
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                           dashboard_address=":0", silence_logs=logging.ERROR)
+                           dashboard_address=":0", silence_logs=logging.CRITICAL)
     return Client(cluster), cluster
 
 
@@ -220,9 +222,9 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
             stage(f"connecting to {scheduler}" if scheduler else f"starting {workers} workers")
             with held_signals():  # Ctrl-C once the cluster is up, to close it: half started, dask cannot
                 client, cluster = _client(scheduler, workers)
-            stack.callback(client.close)
             if cluster is not None:
                 stack.callback(cluster.close)
+            stack.callback(client.close)  # the client first, then its cluster (callbacks run last in, first out)
         outdir.mkdir(parents=True, exist_ok=True)
         manifest.update(source=sweep.source, fingerprint=sweep.fingerprint(), points=len(points),
                         axes={a.key: ("random" if a.random else "grid", len(a.values)) for a in sweep.axes},
