@@ -14,7 +14,6 @@ flows trigonometric polynomials of degree 1 and 2 in the map's angle at every ec
 that a fixed grid of 16 x 12 points holds them from kappa = 0.3 to 1 - kappa = 1e-5.
 """
 
-import cmath
 import math
 
 import numpy as np

@@ -136,7 +136,7 @@ def oscillating_cylinder_force(a: float, b: float, nu: float, rho: float, w: flo
     fb, dfb, _, _, _ = basis(b)
     mat = np.array([fa, dfa, fb, dfb], dtype=complex)
     coef = np.linalg.solve(mat, np.array([a, 1.0, 0.0, 0.0], dtype=complex))  # U = 1
-    f_a, df_a, d2f_a, w_a, dw_a = fa @ coef, dfa @ coef, d2fa @ coef, wa @ coef, dwa @ coef
+    f_a, df_a, d2f_a, dw_a = fa @ coef, dfa @ coef, d2fa @ coef, dwa @ coef
     p = -a * (rho * 1j * w * df_a + mu * dw_a)
     d_f_over_r = df_a / a - f_a / a**2
     return math.pi * a * (-p + 2.0 * mu * d_f_over_r + mu * (d2f_a - df_a / a + f_a / a**2))
