@@ -55,7 +55,7 @@ import numpy as np
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.publish import publish
+from benchmarks.harness import publish
 from lubrication.stokes_exact import stokes_exact_resistance
 from lubrication.unsteady import (
     AnnulusMap,

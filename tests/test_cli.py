@@ -106,7 +106,8 @@ class _FailingGroup:
 
 def test_validate_writes_the_report_and_fails_on_a_failed_comparison(tmp_path, capsys, monkeypatch):
     """The command's own path (report, exit status, nothing half-written) with two groups standing in for all."""
-    from validation import lubrication_checks, suite
+    from validation import suite
+    from validation.reports import lubrication_checks
 
     monkeypatch.setattr(suite, "GROUPS", {"Reynolds solver against the lubrication closed forms": lubrication_checks})
     code, out, _ = run(capsys, "validate", "--quick", "-o", str(tmp_path / "passing"))

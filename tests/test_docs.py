@@ -200,7 +200,7 @@ def test_the_command_line_reference_has_every_subcommand_and_option(build):
         for action in _documented_actions(sub):
             # an entry of Sphinx's option directive for each flag, and the help text argparse prints
             anchors = [f'id="cmdoption-snail-{name}-{flag.lstrip("-")}"' for flag in action.option_strings]
-            anchors = anchors or [f'id="cmdoption-snail-{name}-arg-{action.dest}"']
+            anchors = anchors or [f'id="cmdoption-snail-{name}-arg-{action.metavar or action.dest}"']
             missing += [f"snail {name}: {anchor}" for anchor in anchors if anchor not in page]
             words = " ".join((action.help or "").split())[:40]
             if words not in text:
