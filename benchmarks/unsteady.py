@@ -55,7 +55,7 @@ import numpy as np
 if __package__ in (None, ""):  # run as a file: make the project importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.harness import publish
+from benchmarks.harness import machine, publish, speed_gauge_ms
 from lubrication.stokes_exact import stokes_exact_resistance
 from lubrication.unsteady import (
     AnnulusMap,
@@ -204,32 +204,13 @@ def _series_error(run, ref) -> dict:
     return out
 
 
-def _machine() -> dict:
-    import platform
-
-    import scipy
-
-    cpu = platform.processor()
-    try:
-        with open("/proc/cpuinfo") as f:
-            cpu = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), cpu)
-    except OSError:
-        pass
-    return {"cpu": cpu, "cores": os.cpu_count(), "platform": platform.platform(),
-            "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__}
-
-
 def _conditions() -> dict:
-    """The load average and the thread CPU time (ms) of a fixed pure-Python loop (as benchmarks/reynolds.py)."""
-    start = time.thread_time()
-    total = 0
-    for i in range(1_000_000):
-        total += i * i
-    return {"load_average": os.getloadavg(), "python_loop_ms": 1e3 * (time.thread_time() - start)}
+    """The load average and how fast the machine ran at the moment (:func:`benchmarks.harness.speed_gauge_ms`)."""
+    return {"load_average": os.getloadavg(), "python_loop_ms": speed_gauge_ms()}
 
 
-def main() -> dict:
-    results = {"date": datetime.date.today().isoformat(), "machine": _machine(), "at_start": _conditions(),
+def run() -> dict:
+    results = {"date": datetime.date.today().isoformat(), "machine": machine(), "at_start": _conditions(),
                "accuracy": {}, "unsteady_accuracy": {}, "cost": {}, "fe": {}, "representative": {}}
     lines = ["# Unsteady Navier-Stokes solver", "",
              f"{results['date']}, {results['machine']['cpu']}, {results['machine']['cores']} cores (shared: load "
@@ -371,4 +352,4 @@ def main() -> dict:
 
 
 if __name__ == "__main__":
-    main()
+    run()
