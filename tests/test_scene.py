@@ -189,6 +189,8 @@ BAD = [
     bad("reduced model with cavitation",
         edited(PHYSICAL, model={"equations": "reduced"}, cavitation={"model": "jfo"}),
         "cavitation.model", "'full'"),
+    bad("an angular rate in hertz (pint reads 1 Hz as 1 rad/s)", edited(PHYSICAL, initial={"omega_b": "1 Hz"}),
+        "initial.omega_b", "ambiguous", "rad/s (or rpm)"),
 ]
 
 

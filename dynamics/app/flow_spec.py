@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import math
 import os
-import re
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -48,7 +47,7 @@ import numpy as np
 
 from dynamics.apparatus import PRESETS
 from dynamics.scenes import SceneError
-from dynamics.scenes.load import _value as read_value
+from dynamics.scenes.load import read_value
 from dynamics.scenes.schema import ALTERNATIVE_KEYS, SECTIONS
 from lubrication.geometry import MAX_RATE
 from lubrication.unsteady import (
@@ -113,8 +112,6 @@ _PHASE = Key(help="phase at t = 0", unit="deg", scale=math.pi / 180.0, low=-1e6,
 #: The entries of a motion table (each 0 when missing), read with the key of their quantity (None) or their own.
 HARMONIC_ENTRIES: dict[str, Key | None] = {"mean": None, "amplitude": None, "omega": _FREQUENCY, "phase": _PHASE}
 
-# pint reads a hertz as 1/s, so "2 Hz" would pass as 2 rad/s, not 4 pi rad/s
-_HERTZ = re.compile(r"hz\b|hertz", re.IGNORECASE)
 _DEFAULTS = {"rtol": 1e-4, "n_theta": None, "n_r": None, "animation": "gif", "frame": "lab"}
 
 
@@ -235,18 +232,9 @@ def _check_names(raw: Mapping[str, Any]) -> None:
                 raise SceneError(f"unknown key {section}.{name}; allowed keys in [{section}]: {keys}{why}")
 
 
-def _quantity(name: str, raw: Any, key: Key) -> Any:
-    """A value read as the scenes read it; a rate in hertz is refused (pint takes 1 Hz for 1 rad/s)."""
-    if key.unit == "rad/s" and isinstance(raw, str) and _HERTZ.search(raw):
-        msg = (f"{name} = {raw!r} is ambiguous: a hertz is a cycle per second, 2 pi rad/s, but reads as 1 rad/s; "
-               f"give an angular velocity in rad/s (or rpm), {key.allowed()}")
-        raise SceneError(msg)
-    return read_value(name, raw, key)
-
-
 def _read(raw: Mapping[str, Any], section: str, skip: tuple[str, ...] = ()) -> dict[str, Any]:
     """The keys given in ``[section]`` (but ``skip``), converted to SI and checked against their ranges."""
-    return {name: _quantity(f"{section}.{name}", given, FLOW_SECTIONS[section][name])
+    return {name: read_value(f"{section}.{name}", given, FLOW_SECTIONS[section][name])
             for name, given in raw.get(section, {}).items() if name not in skip}
 
 
@@ -283,14 +271,14 @@ def _harmonic(name: str, raw: Any) -> Harmonic:
             msg = (f"motion.{name} must be a number, a string with units or a table "
                    f"{{mean, amplitude, omega, phase}}; got the list {raw!r}")
             raise SceneError(msg)
-        return Harmonic(mean=_quantity(f"motion.{name}", raw, key))
+        return Harmonic(mean=read_value(f"motion.{name}", raw, key))
     entries = {}
     for entry, given in raw.items():
         if entry not in HARMONIC_ENTRIES:
             msg = (f"unknown entry motion.{name}.{entry}; a motion table has the entries "
                    f"{', '.join(HARMONIC_ENTRIES)} (mean + amplitude sin(omega t + phase))")
             raise SceneError(msg)
-        entries[entry] = _quantity(f"motion.{name}.{entry}", given, HARMONIC_ENTRIES[entry] or key)
+        entries[entry] = read_value(f"motion.{name}.{entry}", given, HARMONIC_ENTRIES[entry] or key)
     return Harmonic(**entries)
 
 
@@ -339,7 +327,7 @@ def _snapshots(raw: Mapping[str, Any], run: dict[str, Any], t_end: float) -> tup
     key = FLOW_SECTIONS["run"]["snapshot_times"]
     times = set()
     for i, entry in enumerate(listed):
-        t = _quantity(f"run.snapshot_times[{i}]", entry, key)
+        t = read_value(f"run.snapshot_times[{i}]", entry, key)
         if t > t_end:
             msg = f"run.snapshot_times[{i}] must be in [0, run.t_end] = [0, {t_end:g}] s, got {entry!r}"
             raise SceneError(msg)

@@ -57,6 +57,7 @@ import dataclasses
 import json
 import math
 import os
+import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from importlib.resources import files
@@ -81,7 +82,7 @@ from dynamics.scenes.schema import (
 from numerics.keys import Key, field_key
 from numerics.units import UnitError, to_si
 
-__all__ = ["load_scene", "parse_scene", "resolved_toml"]
+__all__ = ["load_scene", "parse_scene", "read_value", "resolved_toml"]
 
 _OTHER = {(s, k1): k2 for s, a, b in ALTERNATIVES for k1, k2 in ((a, b), (b, a))}
 
@@ -93,8 +94,16 @@ _GROUPS_KEY = {field_of("groups", k): f"groups.{k}" for k in SECTIONS["groups"]}
 
 # -- reading values --------------------------------------------------------------
 
+# pint reads a hertz as 1/s, and a radian as 1: "2 Hz" would pass as 2 rad/s, not 4 pi rad/s
+_HERTZ = re.compile(r"hz\b|hertz", re.IGNORECASE)
+
+
 def _si(name: str, text: str, key: Key) -> float:
-    """A string quantity in SI base units, after checking its dimension."""
+    """A string quantity in SI base units, after checking its dimension; an angular rate in hertz is refused."""
+    if key.unit == "rad/s" and _HERTZ.search(text):
+        msg = (f"{name} = {text!r} is ambiguous: a hertz is a cycle per second, 2 pi rad/s, but reads as 1 rad/s; "
+               f"give an angular velocity in rad/s (or rpm), {key.allowed()}")
+        raise SceneError(msg)
     try:
         return to_si(text, key.dimension)
     except UnitError as err:
@@ -102,7 +111,7 @@ def _si(name: str, text: str, key: Key) -> float:
         raise SceneError(msg) from err
 
 
-def _value(name: str, raw: Any, key: Key) -> Any:
+def read_value(name: str, raw: Any, key: Key) -> Any:
     """The value of key ``name`` given as ``raw``: converted to SI and checked against its range."""
     if key.none and raw == key.none:
         return None
@@ -169,7 +178,7 @@ def _read(raw: Mapping[str, Any], section: str, dimensionless: bool = False) -> 
         spec = SECTIONS[section][key]
         if dimensionless and spec.reduced_unit:
             spec = spec.in_tau()
-        values[key] = _value(f"{section}.{key}", given, spec)
+        values[key] = read_value(f"{section}.{key}", given, spec)
     return values
 
 
