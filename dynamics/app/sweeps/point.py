@@ -18,6 +18,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from dynamics.app.sweeps.spec import point_key
+from dynamics.ensemble import unsteadiness
 from dynamics.regime import REGIMES as _CLASSIFIED
 from dynamics.regime import classify, late_half
 from dynamics.scenes import parse_scene
@@ -58,8 +59,17 @@ def classify_point(trajectory) -> tuple[str, dict[str, Any]]:
     return ("failed" if trajectory.status in ("failed", "interrupted") else regime), numbers
 
 
+def _radii(scene) -> tuple[float, float]:
+    """a and b in the unit of the run's x_b: m, or b in a dimensionless scene (a unknown without delta/a)."""
+    if scene.apparatus is not None:
+        return scene.apparatus.a, scene.apparatus.b
+    delta_over_a = scene.groups.delta_over_a
+    return (1.0 / (1.0 + delta_over_a) if delta_over_a else math.nan), 1.0
+
+
 def run_point(base: Mapping[str, Any], point: Mapping[str, Any], source: str = "[base]") -> dict[str, Any]:
-    """Build, run and classify one point; a failure becomes a "failed" row with its reason.
+    """Build, run and classify one point; a failure becomes a "failed" row with its reason. A point with
+    rough contact also gets its unsteadiness (:func:`dynamics.ensemble.unsteadiness`).
 
     Returns
     -------
@@ -72,8 +82,11 @@ def run_point(base: Mapping[str, Any], point: Mapping[str, Any], source: str = "
     start = time.perf_counter()
     row = {**point, "point": point_key(point)}
     try:
-        trajectory = run_scene(parse_scene(base, source, point))
+        scene = parse_scene(base, source, point)
+        trajectory = run_scene(scene)
         regime, numbers = classify_point(trajectory)
+        if scene.contact is not None:
+            numbers.update(unsteadiness(trajectory, *_radii(scene)))
         row.update(numbers, status=trajectory.status, regime=regime, steps=trajectory.steps,
                    reason=trajectory.message if regime == "failed" else "")
     # A point fails alone: any error is its reason, and the sweep goes on.

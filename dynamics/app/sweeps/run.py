@@ -31,10 +31,13 @@ from dynamics.app.sweeps.compiled import warm
 from dynamics.app.sweeps.spec import Sweep, SweepError, point_key
 from dynamics.app.sweeps.store import (
     CSV_NAME,
+    ENSEMBLE_NAME,
     MANIFEST_NAME,
+    REALISATION,
     Table,
     check_manifest,
     read_rows,
+    write_ensemble,
 )
 from dynamics.scenes import parse_scene
 from numerics.files import write_json
@@ -251,6 +254,8 @@ def run_sweep(sweep: Sweep, outdir: str | os.PathLike, *, scheduler: str | None 
                     bar.update(len(rows))
             compute_time = time.perf_counter() - compute_start
     rows = read_rows(csv_path)
+    if REALISATION in sweep.keys:
+        write_ensemble(outdir / ENSEMBLE_NAME, rows, sweep.keys)
     regimes = dict(Counter(row["regime"] for row in rows))
     result = SweepResult(csv_path=csv_path, points=len(points), already_done=len(points) - len(missing),
                          computed=computed,

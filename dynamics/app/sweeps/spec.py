@@ -12,13 +12,15 @@ A sweep file is TOML. It names a base scene and the axes along which it varies:
     "initial.kappa" = {start = 0.1, stop = 0.9, num = 5}          # evenly spaced, both ends included
     "groups.upsilon" = {start = 0.1, stop = 10, num = 3, spacing = "log"}
     "initial.phi" = {random = "uniform", low = 0, high = 6.28, num = 100}
+    "contact.seed" = {start = 0, stop = 99, num = 100}            # integers from integer ends: 0, 1, ..., 99
 
 An axis key is a dotted scene key, ``section.key``, applied to the base scene as
 an override (:func:`dynamics.scenes.load.parse_scene`). The grid axes (lists and
 ``start/stop/num``) are crossed: the sweep is their Cartesian product. The
 random axes are drawn together, ``num`` joint samples from one generator seeded
 by ``seed`` (so they must agree on ``num``), and these samples are crossed with
-the grid. ``random`` is ``"uniform"`` or ``"log-uniform"``.
+the grid. ``random`` is ``"uniform"`` or ``"log-uniform"``. A ``contact.seed`` axis makes
+an ensemble of surface realisations (``ensemble.csv``, :func:`dynamics.app.sweeps.store.write_ensemble`).
 
 The file is validated before anything runs: unknown keys, malformed axes and
 axis values that the base scene refuses are :class:`SweepError`, whose message
@@ -146,7 +148,10 @@ def _grid_axis(key: str, spec: Mapping[str, Any]) -> Axis:
             msg = f"axes.{key}: spacing = 'log' needs start > 0 and stop > 0, got {start:g} and {stop:g}"
             raise SweepError(msg)
         return Axis(key, _rounded(np.geomspace(start, stop, num)), log=True)
-    return Axis(key, _rounded(np.linspace(start, stop, num)))
+    values = np.linspace(start, stop, num)
+    if all(isinstance(spec[name], int) for name in ("start", "stop")) and np.all(values == np.round(values)):
+        return Axis(key, tuple(int(v) for v in np.round(values)))  # integers stay integers: seeds, counts
+    return Axis(key, _rounded(values))
 
 
 def _rounded(values: np.ndarray) -> tuple[float, ...]:

@@ -8,6 +8,12 @@ appending. A sweep started again in the same folder runs only the points whose
 key the table lacks. ``sweep.json``, the manifest, holds the fingerprint of the
 sweep (:meth:`dynamics.app.sweeps.spec.Sweep.fingerprint`): a folder is resumed
 only by the same sweep.
+
+A sweep with a ``contact.seed`` axis is an ensemble of surface realisations:
+``ensemble.csv`` (:func:`write_ensemble`) has, for each point of the other axes,
+the count, mean, standard deviation and standard error of every number of
+:data:`dynamics.ensemble.UNSTEADINESS` over the seeds, rewritten whole at the end
+of each run of the sweep.
 """
 
 from __future__ import annotations
@@ -23,11 +29,14 @@ from typing import Any
 from dynamics.app.sweeps.spec import Sweep, SweepError
 from numerics.files import write_text
 
-__all__ = ["CSV_NAME", "MANIFEST_NAME", "NUMBERS", "TEXT", "Table", "check_manifest", "read_rows", "read_table",
-           "to_pandas"]
+__all__ = ["CSV_NAME", "ENSEMBLE_NAME", "MANIFEST_NAME", "NUMBERS", "REALISATION", "TEXT", "Table", "check_manifest",
+           "read_rows", "read_table", "to_pandas", "write_ensemble"]
 
 CSV_NAME = "sweep.csv"
 MANIFEST_NAME = "sweep.json"
+ENSEMBLE_NAME = "ensemble.csv"
+#: The axis whose values are realisations of the surfaces, not parameters.
+REALISATION = "contact.seed"
 
 # What each row records after the axis values and the point key, in this order.
 NUMBERS = (
@@ -42,6 +51,15 @@ NUMBERS = (
     "omega_b_change_late",  # (max - min of Omega_b over the second half) / |Omega_b| at the end: <1% rolls steadily
     "phi_range_late",  # max - min of phi over the second half (rad): ~0 steady
     "stop_event",  # the event that stopped the run: runaway, gap_floor, reynolds, or empty
+    # with a [contact] section, the unsteadiness over the second half (dynamics.ensemble.UNSTEADINESS)
+    "mean_speed_late",  # distance rolled over time (m/s, or b/tau in a dimensionless scene)
+    "speed_spread_late",  # standard deviation of the speed about that mean
+    "phi_mean_late",  # mean angle of the line of centres (rad; pi at the lowest point)
+    "phi_rms_late",  # its standard deviation: the rocking amplitude (rad)
+    "locked_fraction_late",  # share of the time locked (hard contact)
+    "switch_rate_late",  # contact switches per unit time
+    "power_at_2pi_a",  # share of the speed's fluctuation at the inner surface's wavelength, against distance
+    "power_at_2pi_b",  # and at the outer surface's
     "steps",  # accepted integrator steps
     "wall_time_s",  # time spent on this point, building the scene included
     "reason",  # why the point failed; empty otherwise
@@ -162,3 +180,19 @@ def check_manifest(path: Path, sweep: Sweep) -> dict:
                f"{manifest.get('fingerprint')}); write to another folder (-o DIR)")
         raise SweepError(msg)
     return manifest
+
+
+def write_ensemble(path: Path, rows: Iterable[Mapping[str, str]], keys: Sequence[str]) -> None:
+    """``ensemble.csv`` of a sweep with the axes ``keys`` (one of them :data:`REALISATION`): the statistics of
+    :func:`dynamics.ensemble.ensemble_statistics` over the realisations of each point of the other axes, failed
+    points left out (the count says how many remain)."""
+    from dynamics.ensemble import ensemble_statistics
+
+    by = [k for k in keys if k != REALISATION]
+    stats = ensemble_statistics([r for r in rows if r["regime"] != "failed"], by)
+    text = io.StringIO()
+    if stats:
+        writer = csv.DictWriter(text, list(stats[0]), lineterminator="\n")
+        writer.writeheader()
+        writer.writerows({k: _format(v) for k, v in row.items()} for row in stats)
+    write_text(path, text.getvalue())
