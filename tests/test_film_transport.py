@@ -316,6 +316,7 @@ def test_the_rocking_film_conserves_its_liquid(gauge):
     assert np.min(run.void) > -1e-12 * np.max(run.area)  # gas areas stay non-negative up to rounding
 
 
+@pytest.mark.slow  # compiles the coupled film model's own kernels (a minute and a half)
 def test_the_coupled_release_conserves_the_film_liquid():
     """The steel apparatus released at kappa = 0.5, phi = 0.5: it swings, cavitates, and no liquid is lost."""
     apparatus = preset("steel", nu=2e-4, alpha=math.radians(2.4))
@@ -330,6 +331,7 @@ def test_the_coupled_release_conserves_the_film_liquid():
     np.testing.assert_allclose(c["liquid"] + c["reservoir"], 2 * np.pi * A * DELTA, rtol=1e-13)
 
 
+@pytest.mark.slow  # compiles the coupled film model's own kernels (a minute and a half)
 def test_a_film_that_cannot_cavitate_moves_the_apparatus_as_the_closed_forms_do():
     """The coupling to (2.1)-(2.4): a full transported film is the Reynolds film, exact on the Sommerfeld grid."""
     apparatus = preset("steel", nu=2e-4, alpha=math.radians(2.4))
