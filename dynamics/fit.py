@@ -310,7 +310,7 @@ def read_fit_scene(text: str, source: str = "<string>") -> tuple[dict, list[Prio
     import tomllib
 
     from dynamics.scenes import SceneError
-    from dynamics.scenes.load import _value
+    from dynamics.scenes.load import read_value
     from dynamics.scenes.schema import SECTIONS
 
     try:
@@ -333,7 +333,7 @@ def read_fit_scene(text: str, source: str = "<string>") -> tuple[dict, list[Prio
         if not isinstance(spec, dict) or set(spec) - {"low", "high", "log"} or not {"low", "high"} <= set(spec):
             msg = f"fit.{name} must be a table {{low = ..., high = ..., log = false}}, got {spec!r}"
             raise SceneError(msg)
-        low, high = (_value(f"fit.{name}.{end}", spec[end], rule) for end in ("low", "high"))
+        low, high = (read_value(f"fit.{name}.{end}", spec[end], rule) for end in ("low", "high"))
         try:
             priors.append(Prior(name, low, high, bool(spec.get("log", False))))
         except ValueError as err:
