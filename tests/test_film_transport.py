@@ -177,6 +177,7 @@ def test_the_steady_jfo_film_is_a_fixed_point_of_the_transport(kappa, omega_a, o
     np.testing.assert_allclose(rates.forces.as_tuple(), steady.forces.as_tuple(), rtol=1e-12)
 
 
+@pytest.mark.slow  # compiles the prescribed rocking's kernels (a minute and a half)
 def test_a_full_film_released_into_a_steady_rotation_settles_on_the_steady_jfo_film():
     """The transient ends: after a few transits of the cavity the film is the steady solver's to the tolerance."""
     annulus = Annulus.from_kappa(A, B, 0.6, L)
@@ -227,6 +228,7 @@ def _cavity(n, kappa, mean, swing, p_cav=1e3):
     return annulus, film, content
 
 
+@pytest.mark.slow  # compiles the prescribed rocking's kernels (a minute and a half)
 def test_a_cavity_carries_its_content_at_the_mean_wall_speed_first_order_upwind():
     """d(a h F)/dt + (U/(2a)) d(a h F)/dtheta = 0: the content turns rigidly at (W_a + W_b)/2."""
     w_a, w_b, t_end = 1.5, 0.5, 1.0
@@ -248,6 +250,7 @@ def test_a_cavity_carries_its_content_at_the_mean_wall_speed_first_order_upwind(
     assert errors[-1] < 0.02
 
 
+@pytest.mark.slow  # compiles the prescribed rocking's kernels (a minute and a half)
 def test_without_rotation_a_cavity_keeps_its_content_while_the_gap_moves_under_it():
     """U = 0: a h F does not move; each moving dual cell holds the content between its faces."""
     kappa0, amplitude, omega = 0.5, 0.2, 2.0
@@ -266,6 +269,7 @@ def test_without_rotation_a_cavity_keeps_its_content_while_the_gap_moves_under_i
     assert errors[-1] < 0.01
 
 
+@pytest.mark.slow  # compiles the prescribed rocking's kernels (a minute and a half)
 def test_a_cavity_rocked_for_four_periods_gets_its_content_back_within_the_upwind_diffusion():
     """After whole periods the faces are back: the exact content is the initial one.
 
@@ -304,6 +308,7 @@ def test_the_shear_of_a_cavity_is_its_liquid_share():
 
 # -- (c) mass balance along rocking films and a coupled trajectory --------------------------------
 
+@pytest.mark.slow  # compiles the prescribed rocking's kernels (a minute and a half)
 @pytest.mark.parametrize("gauge", [Feed(P_ATM), Bubble(P_ATM)])
 def test_the_rocking_film_conserves_its_liquid(gauge):
     """kappa = 0.5 +- 0.4 at omega = 20 rad/s, one period: cavities open and close; liquid + R is invariant."""
