@@ -153,7 +153,8 @@ def navier_stokes_run(run, initial: Initial, options: NavierStokesOptions = Navi
     (N m): the fluid's dynamic loads over the whole length; ``kinetic_energy``, ``potential_energy`` and
     ``dissipated`` (J, :func:`energy_columns`), whose sum stays constant; ``info["navier_stokes"]`` the grid, the counts
     and, with ``snapshot_times``, ``info["snapshots"]``: the fields (:meth:`lubrication.unsteady.solver.UnsteadySolver.fields`) with
-    ``t`` and the outer cylinder's turn ``theta_b`` (rad).
+    ``t``, the outer cylinder's turn ``theta_b`` (rad) and spin ``omega_b`` (rad/s), clockwise, as
+    :func:`lubrication.unsteady.snapshots.in_frame` takes them.
     """
     from lubrication.unsteady import (
         MIN_ONE_MINUS_KAPPA_UNSTEADY,
@@ -270,7 +271,7 @@ def _row(solver, x_b: float) -> list[float]:
 
 
 def _snapshot(solver, theta_b: float) -> dict:
-    return {"t": solver.state.t, "theta_b": theta_b, **solver.fields()}
+    return {"t": solver.state.t, "theta_b": theta_b, "omega_b": float(solver.state.q[3]), **solver.fields()}
 
 
 def _steady_start(solver, z_a: complex, q: np.ndarray) -> None:
