@@ -128,11 +128,16 @@ class NavierStokesOptions:
         as it narrows or widens (by a factor REGRID apart).
     snapshot_times : tuple of float
         Times (s) at which the run keeps the flow field (steps land on them).
+    reuse_factorisations : bool
+        Reuse the step's factorisations across steps and corrections (defect correction); False
+        factorises every solve (``StepControl(reuse=False)``): the same step control, the baseline of what
+        reuse saves (benchmarks/navier_stokes.py).
     """
 
     n_r: int = 16
     n_theta: int | None = None
     snapshot_times: tuple = ()
+    reuse_factorisations: bool = True
 
 
 #: The default grid is changed when the gap's own default differs from it by this factor.
@@ -182,7 +187,7 @@ def navier_stokes_run(run, initial: Initial, options: NavierStokesOptions = Navi
             return Resolution(options.n_theta, options.n_r)
         return default_resolution(AnnulusMap(ap.a, ap.b, z), options.n_r)
 
-    solver = UnsteadySolver(ap.a, ap.b, ap.nu, ap.rho, resolution_at(z_a), control=StepControl(rtol=run.rtol))
+    solver = UnsteadySolver(ap.a, ap.b, ap.nu, ap.rho, resolution_at(z_a), control=StepControl(rtol=run.rtol, reuse=options.reuse_factorisations))
     solver.start(z_a, q0)
     if np.any(q0 != 0.0):
         _steady_start(solver, z_a, q0)
