@@ -108,7 +108,8 @@ def to_markdown(results: dict) -> str:
              f"The default release (steel, 200 cSt, {ALPHA_DEG} deg, kappa = 0.5, phi = 0.5 rad, from rest), "
              f"{results['t_end_s']:g} s simulated, rtol {results['rtol']:g}; wall seconds of the stepping per "
              "simulated second.", "",
-             f"## Factorisations reused against factorised every solve ({results['pairs_count']} interleaved pairs)", "",
+             "## Factorisations reused against factorised every solve "
+             f"({results['pairs_count']} interleaved pairs)", "",
              "| solver | median | fastest | slowest | steps | rejected | factorisations | solves |",
              "|---|---|---|---|---|---|---|---|"]
     for key, label in (("reuse", "factorisations reused"), ("baseline", "factorised every solve")):
