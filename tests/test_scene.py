@@ -127,7 +127,7 @@ BAD = [
         "fluid.nu", "not a quantity", "[1e-09, 1000] m^2/s"),
     bad("wrong type", edited(PHYSICAL, fluid={"nu": True}), "fluid.nu", "[1e-09, 1000] m^2/s", "True"),
     bad("unknown choice", edited(PHYSICAL, model={"equations": "partial"}),
-        "model.equations", "'full', 'reduced', 'auto'"),
+        "model.equations", "'full', 'reduced', 'navier-stokes', 'auto'"),
     bad("float for an integer", edited(PHYSICAL, model={"n": 16.0}),
         "model.n", "integer", "[8, 1048576]"),
     bad("not finite", edited(PHYSICAL, initial={"phi": math.nan}), "initial.phi", "[-1e+06, 1e+06] deg"),

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dynamics.app.flow_spec import MAX_SNAPSHOTS, FlowSpec, turned_angle
+from dynamics.app.flow_spec import FlowSpec, turned_angle
 from lubrication.unsteady import (
     LOAD_NAMES,
     PrescribedRun,
@@ -127,11 +127,10 @@ def run_flow(spec: FlowSpec, *, progress=None) -> FlowRun:
 
 def output_names() -> frozenset[str]:
     """Every file a flow set may hold: forces.csv, summary.json, and the snapshots' VTU series (up to
-    :data:`~dynamics.app.flow_spec.MAX_SNAPSHOTS` files), flow.pvd and flow.gif."""
-    from lubrication.unsteady.snapshots import series_names
+    :data:`~lubrication.unsteady.snapshots.MAX_SNAPSHOTS` files), flow.pvd and flow.gif."""
+    from lubrication.unsteady.snapshots import output_files
 
-    return frozenset({"forces.csv", "summary.json", f"{STEM}.pvd", f"{STEM}.gif",
-                      *series_names(MAX_SNAPSHOTS, STEM)})
+    return frozenset({"forces.csv", "summary.json", *output_files(STEM)})
 
 
 def flow_folder(path: str | Path) -> OutputFolder:

@@ -58,7 +58,7 @@ from lubrication.unsteady import (
     Resolution,
     default_resolution,
 )
-from lubrication.unsteady.snapshots import FRAMES
+from lubrication.unsteady.snapshots import FRAMES, MAX_SNAPSHOTS
 from numerics.keys import Key
 
 __all__ = ["EXAMPLE", "FLOW_SECTIONS", "HARMONIC_ENTRIES", "MAX_LU_BYTES", "MAX_SNAPSHOTS", "FlowSpec",
@@ -66,8 +66,6 @@ __all__ = ["EXAMPLE", "FLOW_SECTIONS", "HARMONIC_ENTRIES", "MAX_LU_BYTES", "MAX_
 
 #: The example motion, shipped as package data: what ``snail flow`` runs without a file.
 EXAMPLE = "flow_example.toml"
-#: Most snapshots a run may ask for: each is a VTU file and a frame of the animation (0.1-0.3 s to draw).
-MAX_SNAPSHOTS = 1000
 #: Largest banded LU factorisation of the solver a motion file may ask for (bytes): its band of
 #: 9 (2 n_r) rows over n_theta 2 n_r columns of complex numbers, 576 n_r^2 n_theta bytes
 #: (lubrication/unsteady/operator.py), and a step may hold two.

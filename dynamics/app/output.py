@@ -1,4 +1,5 @@
-"""What a run leaves on disk: trajectory.csv, summary.json and trajectory.png, each written whole."""
+"""What a run leaves on disk: trajectory.csv, summary.json and trajectory.png, each written whole, and a
+Navier-Stokes run's flow snapshots (flow_NNNN.vtu, flow.pvd, flow.gif) in the same set."""
 
 from __future__ import annotations
 
@@ -10,9 +11,10 @@ import numpy as np
 from dynamics.app.figures import figure_png
 from dynamics.trajectory import Trajectory
 from numerics.files import write_bytes, write_json, write_text
-from numerics.folder import OutputFolder
+from numerics.folder import OUTPUT_NAMES, OutputFolder
 
-__all__ = ["CSV_COLUMNS", "MAX_ROWS", "summary", "thinning", "trajectory_csv", "write_outputs"]
+__all__ = ["CSV_COLUMNS", "MAX_ROWS", "SNAPSHOT_STEM", "output_names", "summary", "thinning", "trajectory_csv",
+           "write_outputs", "write_snapshots"]
 
 CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "phi", "omega_a", "omega_b")
 
@@ -22,6 +24,38 @@ CSV_COLUMNS = ("t", "t_tau", "x_b", "eps", "chi", "kappa", "one_minus_kappa", "p
 #: kept), and summary.json says so. Rows at a requested output interval are never thinned: the scene
 #: refuses an interval that would give more.
 MAX_ROWS = 200_000
+
+
+#: The stem of a Navier-Stokes run's snapshot files, as ``snail flow``'s: flow_0000.vtu, ..., flow.pvd, flow.gif.
+SNAPSHOT_STEM = "flow"
+
+
+def output_names() -> frozenset[str]:
+    """Every file a run's set may hold: trajectory.csv, summary.json, trajectory.png, scene.resolved.toml and
+    the flow snapshots of a Navier-Stokes run (:func:`lubrication.unsteady.snapshots.output_files`)."""
+    from lubrication.unsteady.snapshots import output_files
+
+    return OUTPUT_NAMES | output_files(SNAPSHOT_STEM)
+
+
+def write_snapshots(folder: Path, snapshots: list[dict], animation: str = "none") -> dict:
+    """Write a Navier-Stokes run's flow snapshots into ``folder`` and return their record for summary.json.
+
+    The VTU series and its ParaView collection flow.pvd (:func:`lubrication.unsteady.snapshots.write_vtu_series`,
+    the fields in the frame translating with B); with ``animation = "gif"`` also flow.gif, the vorticity and the
+    streamlines in the frame of the outer cylinder (:func:`lubrication.unsteady.snapshots.animate`, from each
+    snapshot's ``theta_b`` and ``omega_b``).
+    """
+    from lubrication.unsteady.snapshots import animate, write_vtu_series
+
+    paths, pvd = write_vtu_series(snapshots, folder, SNAPSHOT_STEM)
+    record = {"count": len(snapshots), "times": [float(s["t"]) for s in snapshots], "files": [p.name for p in paths],
+              "collection": pvd.name, "animation": None, "frame": "outer"}
+    if animation == "gif":
+        gif = animate(snapshots, Path(folder) / f"{SNAPSHOT_STEM}.gif", frame="outer",
+                      theta_b=[s["theta_b"] for s in snapshots], omega_b=[s["omega_b"] for s in snapshots])
+        record["animation"] = gif.name
+    return record
 
 
 def thinning(trajectory: Trajectory, max_rows: int = MAX_ROWS) -> np.ndarray:
@@ -85,7 +119,7 @@ def summary(trajectory: Trajectory, **extra) -> dict:
         "mean_speed_note": "mean_speed is X_b/t from the release, the transient included; late_mean_speed is the "
                            "mean over the second half, where the regime is judged",
         **trajectory.groups,
-        **trajectory.info,
+        **{k: v for k, v in trajectory.info.items() if k != "snapshots"},  # fields: write_snapshots' files
     }
     out.update(extra)
     return _json_numbers(out)
@@ -105,8 +139,10 @@ def _json_numbers(value):
 
 
 def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, resolved_scene: str = "",
-                  plot: bool = True, max_rows: int = MAX_ROWS, draw=figure_png, **extra) -> dict:
-    """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set.
+                  plot: bool = True, max_rows: int = MAX_ROWS, draw=figure_png, animation: str = "none",
+                  **extra) -> dict:
+    """Write trajectory.csv, summary.json, trajectory.png (and scene.resolved.toml) as one set, with the flow
+    snapshots a Navier-Stokes run took (:func:`write_snapshots`; ``animation = "gif"`` adds flow.gif).
 
     ``folder`` is an entered :class:`~numerics.folder.OutputFolder` (the
     command line opens it before the run, so that a bad path is refused before
@@ -118,9 +154,9 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
     ``max_rows`` steps is thinned in the CSV (:func:`thinning`).
     """
     if not isinstance(folder, OutputFolder):
-        with OutputFolder(folder) as opened:
+        with OutputFolder(folder, output_names()) as opened:
             return write_outputs(opened, trajectory, resolved_scene=resolved_scene, plot=plot,
-                                 max_rows=max_rows, draw=draw, **extra)
+                                 max_rows=max_rows, draw=draw, animation=animation, **extra)
     staging = folder.staging
     rows = thinning(trajectory, max_rows)
     if rows.size < trajectory.t.size:
@@ -128,6 +164,8 @@ def write_outputs(folder: OutputFolder | str | Path, trajectory: Trajectory, *, 
                                  "reason": f"more than {max_rows} rows: every "
                                            f"{int(np.ceil(trajectory.t.size / max_rows))}-th step written, "
                                            "with every event row"}
+    if trajectory.info.get("snapshots"):
+        extra["snapshots"] = write_snapshots(staging, trajectory.info["snapshots"], animation)
     info = summary(trajectory, **extra)
     write_text(staging / "trajectory.csv", trajectory_csv(trajectory, rows))
     if plot:

@@ -27,6 +27,10 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     ``progress(t)``, if given, is called now and then with the time reached
     (s, or tau in a dimensionless scene).
 
+    ``model.equations = "navier-stokes"`` runs the coupled flow with the scene's
+    ``[navier_stokes]`` grid and tolerance; its snapshots come back in
+    ``trajectory.info["snapshots"]`` (:func:`dynamics.app.output.write_outputs` writes them).
+
     Raises
     ------
     SceneError
@@ -59,13 +63,22 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     forces = "closed-form"
     if model.equations == "full":
         forces = _force_model(scene)
-    elif model.ends != "infinite" or model.frame_terms != "paper" or model.inertia != "none":
+    elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != "paper"
+                                           or model.inertia != "none"):
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
                                   ("model.frame_terms", True)) if v)
         raise _refuse(key, "the reduced equations (2.11) are leading order: per unit length of an infinitely long "
                            "annulus, in Stokes flow, without the O(delta/a) frame terms; this needs "
                            "model.equations = 'full'")
     run = scene.run
+    rtol, navier_stokes = run.rtol, None
+    if model.equations == "navier-stokes":
+        from dynamics.equations.navier_stokes import NavierStokesOptions
+
+        settings = scene.navier_stokes
+        rtol = settings.rtol
+        navier_stokes = NavierStokesOptions(n_r=settings.n_r, n_theta=settings.n_theta,
+                                            snapshot_times=settings.snapshot_times(run.t_end))
     limits, reach = run.limits, None
     if model.equations == "full" and model.forces == "reynolds" and model.grid == "uniform":
         # the grid resolves the film only so near contact: closer, its forces err beyond model.tolerance
@@ -76,9 +89,9 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
             reach = None
     try:
         trajectory = simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
-                              contact=contact, limits=limits, method=method, rtol=run.rtol,
+                              contact=contact, limits=limits, method=method, rtol=rtol,
                               output_interval=run.output_interval, max_steps=run.max_steps, progress=progress,
-                              frame_terms=model.frame_terms)
+                              frame_terms=model.frame_terms, navier_stokes=navier_stokes)
     except ValueError as err:
         raise SceneError(_resolution_reason(model, reach) if reach is not None and "gap floor" in str(err)
                          else str(err)) from err

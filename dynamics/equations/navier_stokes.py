@@ -128,11 +128,16 @@ class NavierStokesOptions:
         as it narrows or widens (by a factor REGRID apart).
     snapshot_times : tuple of float
         Times (s) at which the run keeps the flow field (steps land on them).
+    reuse_factorisations : bool
+        Reuse the step's factorisations across steps and corrections (defect correction); False
+        factorises every solve (``StepControl(reuse=False)``): the same step control, the baseline of what
+        reuse saves (benchmarks/navier_stokes.py).
     """
 
     n_r: int = 16
     n_theta: int | None = None
     snapshot_times: tuple = ()
+    reuse_factorisations: bool = True
 
 
 #: The default grid is changed when the gap's own default differs from it by this factor.
@@ -153,7 +158,8 @@ def navier_stokes_run(run, initial: Initial, options: NavierStokesOptions = Navi
     (N m): the fluid's dynamic loads over the whole length; ``kinetic_energy``, ``potential_energy`` and
     ``dissipated`` (J, :func:`energy_columns`), whose sum stays constant; ``info["navier_stokes"]`` the grid, the counts
     and, with ``snapshot_times``, ``info["snapshots"]``: the fields (:meth:`lubrication.unsteady.solver.UnsteadySolver.fields`) with
-    ``t`` and the outer cylinder's turn ``theta_b`` (rad).
+    ``t``, the outer cylinder's turn ``theta_b`` (rad) and spin ``omega_b`` (rad/s), clockwise, as
+    :func:`lubrication.unsteady.snapshots.in_frame` takes them.
     """
     from lubrication.unsteady import (
         MIN_ONE_MINUS_KAPPA_UNSTEADY,
@@ -181,7 +187,7 @@ def navier_stokes_run(run, initial: Initial, options: NavierStokesOptions = Navi
             return Resolution(options.n_theta, options.n_r)
         return default_resolution(AnnulusMap(ap.a, ap.b, z), options.n_r)
 
-    solver = UnsteadySolver(ap.a, ap.b, ap.nu, ap.rho, resolution_at(z_a), control=StepControl(rtol=run.rtol))
+    solver = UnsteadySolver(ap.a, ap.b, ap.nu, ap.rho, resolution_at(z_a), control=StepControl(rtol=run.rtol, reuse=options.reuse_factorisations))
     solver.start(z_a, q0)
     if np.any(q0 != 0.0):
         _steady_start(solver, z_a, q0)
@@ -270,7 +276,7 @@ def _row(solver, x_b: float) -> list[float]:
 
 
 def _snapshot(solver, theta_b: float) -> dict:
-    return {"t": solver.state.t, "theta_b": theta_b, **solver.fields()}
+    return {"t": solver.state.t, "theta_b": theta_b, "omega_b": float(solver.state.q[3]), **solver.fields()}
 
 
 def _steady_start(solver, z_a: complex, q: np.ndarray) -> None:

@@ -14,10 +14,11 @@ from dynamics.scenes.schema import (
            Contact,
            Groups,
            Model,
+           NavierStokes,
            Run,
            Scene,
            SceneError,
 )
 
-__all__ = ["SECTIONS", "Cavitation", "Contact", "Groups", "Initial", "Model", "Run", "Scene", "SceneError",
+__all__ = ["SECTIONS", "Cavitation", "Contact", "Groups", "Initial", "Model", "NavierStokes", "Run", "Scene", "SceneError",
            "load_scene", "parse_scene", "resolved_toml"]

@@ -73,6 +73,7 @@ from dynamics.scenes.schema import (
     Groups,
     Initial,
     Model,
+    NavierStokes,
     Run,
     Scene,
     SceneError,
@@ -371,6 +372,64 @@ def _cavitation(raw: Mapping[str, Any]) -> Cavitation | None:
     return cavitation
 
 
+#: The [model] keys the coupled Navier-Stokes run has no use for, with the value it takes, and why.
+_NOT_NAVIER_STOKES = (
+    ("forces", "stokes-exact", "the flow of the gap gives the forces itself: leave model.forces at its default "
+                               "'stokes-exact'"),
+    ("frame_terms", "paper", "frame_terms closes the ODE models' fluid inertia, which the Navier-Stokes flow "
+                             "carries itself: leave it 'paper'"),
+    ("inertia", "none", "the first inertial correction is the ODE models'; the Navier-Stokes flow has all of the "
+                        "fluid's inertia: leave it 'none'"),
+    ("ends", "infinite", "the Navier-Stokes flow is plane, per unit length of an infinitely long annulus: leave it "
+                         "'infinite'"),
+)
+
+
+def _navier_stokes(raw: Mapping[str, Any], model: Model, run: Run) -> NavierStokes | None:
+    """The flow solver's settings of a model.equations = 'navier-stokes' scene; refuse what it cannot take."""
+    given = raw.get("navier_stokes")
+    if model.equations != "navier-stokes":
+        if given is not None:
+            first = next(iter(given), None)
+            name = f"navier_stokes.{first}" if first else "[navier_stokes]"
+            msg = (f"{name}: the [navier_stokes] section sets the coupled flow solver, which runs with "
+                   f"model.equations = 'navier-stokes' only (this scene has {model.equations!r})")
+            raise SceneError(msg)
+        return None
+    for section in ("contact", "cavitation"):
+        if section in raw:
+            first = next(iter(raw[section]), None)
+            name = f"{section}.{first}" if first else f"[{section}]"
+            msg = (f"{name}: the Navier-Stokes equations run with smooth walls and a full film, without a "
+                   f"[{section}] section; remove it or set model.equations = 'full'")
+            raise SceneError(msg)
+    for key_name, value, why in _NOT_NAVIER_STOKES:
+        if getattr(model, key_name) != value:
+            raise SceneError(f"model.{key_name} = {getattr(model, key_name)!r}: {why} with model.equations = "
+                             "'navier-stokes'")
+    settings = NavierStokes(**_read(raw, "navier_stokes"))
+    from lubrication.unsteady.snapshots import MAX_SNAPSHOTS, require_meshio
+
+    interval = settings.snapshot_interval
+    if interval is not None:
+        try:
+            require_meshio()
+        except ImportError as err:
+            raise SceneError(f"navier_stokes.snapshot_interval: {err}") from err
+        count = settings.snapshot_count(run.t_end)
+        if interval > run.t_end or count > MAX_SNAPSHOTS:
+            msg = (f"navier_stokes.snapshot_interval must be in (0, run.t_end] = (0, {run.t_end:g}] s and give at "
+                   f"most {MAX_SNAPSHOTS} snapshots (t_end/interval + 1), got {given['snapshot_interval']!r}: "
+                   f"{count} snapshots")
+            raise SceneError(msg)
+    elif settings.animation != "none":
+        msg = (f"navier_stokes.animation = {settings.animation!r} draws the flow snapshots: give "
+               f"navier_stokes.snapshot_interval (a time in (0, run.t_end] = (0, {run.t_end:g}] s), or set "
+               "navier_stokes.animation = 'none'")
+        raise SceneError(msg)
+    return settings
+
+
 def _run(raw: Mapping[str, Any], apparatus: Apparatus | None) -> Run:
     values = _read(raw, "run")
     _either(values, "run", "t_end", "t_end_tau", required="a scene says how long to run")
@@ -414,9 +473,11 @@ def _build(raw: dict[str, Any], source: str) -> Scene:
     if model.equations == "reduced" and "forces" not in raw.get("model", {}):
         model = dataclasses.replace(model, forces="closed-form")  # the reduced equations' own, (2.11)
     _check_reduced(raw, model, initial)
+    run = _run(raw, apparatus)
+    navier_stokes = _navier_stokes(raw, model, run)
     return Scene(apparatus=apparatus, groups=groups, initial=initial, model=model,
                  contact=_contact(raw, apparatus, groups, initial), cavitation=_cavitation(raw),
-                 run=_run(raw, apparatus), source=source)
+                 run=run, navier_stokes=navier_stokes, source=source)
 
 
 # -- overrides -----------------------------------------------------------------------
@@ -563,6 +624,8 @@ def resolved_toml(scene: Scene) -> str:
         sections["contact"] = {k: v for k, v in contact.items() if v is not None}  # TOML has no null
     if scene.cavitation is not None:
         sections["cavitation"] = dataclasses.asdict(scene.cavitation)
+    if scene.navier_stokes is not None:
+        sections["navier_stokes"] = dataclasses.asdict(scene.navier_stokes)
     suffix = "_tau" if scene.dimensionless else ""
     run = scene.run
     sections["run"] = {f"t_end{suffix}": run.t_end, "rtol": run.rtol}

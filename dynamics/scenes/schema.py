@@ -25,6 +25,7 @@ from dynamics.equations.full import FRAME_TERMS
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
+from dynamics.simulation import NAVIER_STOKES_RTOL
 from lubrication import registry
 from lubrication.reynolds import TRAJECTORY_CELLS
 from numerics.keys import Key, check_fields, field_key, key
@@ -32,6 +33,7 @@ from numerics.keys import Key, check_fields, field_key, key
 __all__ = [
     "ALTERNATIVES",
     "ALTERNATIVE_KEYS",
+    "ANIMATIONS",
     "CAVITATION_MODELS",
     "EQUATIONS",
     "SECTIONS",
@@ -40,6 +42,7 @@ __all__ = [
     "Groups",
     "Initial",
     "Model",
+    "NavierStokes",
     "Run",
     "Scene",
     "SceneError",
@@ -47,7 +50,7 @@ __all__ = [
     "spec",
 ]
 
-EQUATIONS = ("full", "reduced", "auto")
+EQUATIONS = ("full", "reduced", "navier-stokes", "auto")
 CAVITATION_MODELS = ("half-sommerfeld", "swift-stieber", "jfo")
 
 _DEG = math.pi / 180.0
@@ -99,8 +102,10 @@ class Groups:
 class Model:
     """What to model: the equations of motion and the fluid forces in them."""
 
-    equations: str = key("full", help="'full' (2.1)-(2.4), 'reduced' (2.11), or 'auto' (the cheapest that "
-                                      "meets model.tolerance)", choices=EQUATIONS)
+    equations: str = key("full", help="'full' (2.1)-(2.4), 'reduced' (2.11), 'navier-stokes' (the unsteady flow "
+                                      "of the gap coupled to both cylinders, no closure; see [navier_stokes]), or "
+                                      "'auto' (the cheaper of 'full' and 'reduced' that meets model.tolerance)",
+                         choices=EQUATIONS)
     forces: str = key("stokes-exact", help="the full equations' force model: 'stokes-exact' (the exact 2-D Stokes "
                                            "forces), 'closed-form' (the paper's (2.5)-(2.7)), 'reynolds' (the "
                                            "Reynolds solver), any other registered model, or 'auto'",
@@ -199,6 +204,48 @@ class Cavitation:
         check_fields(self)
 
 
+#: The animation choices of [navier_stokes]: as ``snail flow``'s ``run.animation``.
+ANIMATIONS = ("none", "gif")
+
+
+@dataclass(frozen=True)
+class NavierStokes:
+    """The coupled Navier-Stokes solver of model.equations = 'navier-stokes': its grid, its step control, and
+    flow snapshots written with the trajectory.
+
+    The grid and the tolerance are :class:`dynamics.equations.navier_stokes.NavierStokesOptions`' and
+    :data:`dynamics.simulation.NAVIER_STOKES_RTOL`'s; the snapshots are VTU files with a ParaView
+    collection, and on request a GIF of the vorticity and streamlines in the frame of the outer cylinder
+    (:mod:`lubrication.unsteady.snapshots`).
+    """
+
+    n_r: int = key(16, help="Chebyshev points across the gap, walls included", integer=True, low=4, high=64)
+    n_theta: int | None = key(None, help="points around the annulus; 'auto': the solver's default for the current "
+                                         "gap, the grid following the gap as it narrows or widens", integer=True,
+                              low=8, high=1024, none="auto")
+    rtol: float = key(NAVIER_STOKES_RTOL, help="relative local error per step of the flow solver (run.rtol is the "
+                                               "ODE integrators')", low=1e-10, high=0.1, bounds="[]")
+    snapshot_interval: float | None = key(None, help="flow snapshots at t = 0, T, 2T, ... up to t_end, written as "
+                                                     "flow_*.vtu and flow.pvd; 'none': no snapshots",
+                                          dimension="[time]", unit="s", low=0.0, bounds="()", example="0.05 s",
+                                          none="none")
+    animation: str = key("none", help="'gif': flow.gif, the snapshots' vorticity and streamlines in the frame of "
+                                      "the outer cylinder (needs snapshot_interval); 'none'", choices=ANIMATIONS)
+
+    def __post_init__(self):
+        check_fields(self)
+
+    def snapshot_count(self, t_end: float) -> int:
+        """How many snapshots a run of ``t_end`` (s) takes: at 0, T, 2T, ... up to t_end (within rounding)."""
+        if self.snapshot_interval is None:
+            return 0
+        return math.floor(t_end / self.snapshot_interval * (1.0 + 1e-12)) + 1
+
+    def snapshot_times(self, t_end: float) -> tuple[float, ...]:
+        """The times of the :meth:`snapshot_count` snapshots (s), none past ``t_end``; () without snapshots."""
+        return tuple(min(float(k * self.snapshot_interval), t_end) for k in range(self.snapshot_count(t_end)))
+
+
 @dataclass(frozen=True)
 class Run:
     """How long to integrate, how accurately, what to output, and what to do at the validity limits."""
@@ -206,7 +253,8 @@ class Run:
     t_end: float = key(help="duration (in units of tau in a dimensionless scene)", dimension="[time]", unit="s",
                        low=0.0, bounds="()", example="30 s")
     # below 100 eps the error control asks for more than rounding allows: simulate() refuses it too
-    rtol: float = key(1e-8, help="relative tolerance of the integrator", low=100 * sys.float_info.epsilon, high=0.1,
+    rtol: float = key(1e-8, help="relative tolerance of the ODE integrator (the Navier-Stokes solver's is "
+                                 "navier_stokes.rtol)", low=100 * sys.float_info.epsilon, high=0.1,
                       bounds="[]")
     output_interval: float | None = key(None, help="rows of trajectory.csv at this interval (and at every event); "
                                         "'none': one row per integrator step", dimension="[time]", unit="s",
@@ -253,6 +301,10 @@ class Scene:
         is full.
     run : Run
         ``t_end`` in s, or in tau when :attr:`dimensionless`.
+    navier_stokes : NavierStokes or None
+        The flow solver's settings when ``model.equations`` is "navier-stokes"
+        (the defaults when the scene has no ``[navier_stokes]`` section), None
+        otherwise.
     source : str
         Where the scene was read from. It is not compared, so that a scene
         equals its resolved copy.
@@ -265,6 +317,7 @@ class Scene:
     contact: Contact | None
     cavitation: Cavitation | None
     run: Run
+    navier_stokes: NavierStokes | None = None
     source: str = field(default="<string>", compare=False)
 
     @property
@@ -309,7 +362,7 @@ ALTERNATIVES = (("apparatus", "m_a", "rho_a"), ("contact", "sigma", "kappa_star"
                 ("run", "output_interval", "output_interval_tau"))
 
 _SECTION_CLASSES = {"groups": Groups, "initial": Initial, "model": Model, "contact": Contact,
-                    "cavitation": Cavitation, "run": Run}
+                    "cavitation": Cavitation, "navier_stokes": NavierStokes, "run": Run}
 
 
 def _sections() -> dict[str, dict[str, Key]]:
@@ -323,7 +376,7 @@ def _sections() -> dict[str, dict[str, Key]]:
     for (section, name), rule in ALTERNATIVE_KEYS.items():
         table[section].setdefault(name, rule)
     return {name: table[name] for name in ("apparatus", "fluid", "incline", "groups", "initial", "model",
-                                           "contact", "cavitation", "run")}
+                                           "contact", "cavitation", "navier_stokes", "run")}
 
 
 #: section -> {key: Key}, in the order scenes and the documentation list them.

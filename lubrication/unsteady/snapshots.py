@@ -39,13 +39,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["FIELD_NAMES", "FRAMES", "animate", "draw_frame", "flow_mesh", "in_frame", "pvd_text", "quad_cells",
-           "refined", "require_meshio", "series_names", "write_vtu_series"]
+__all__ = ["FIELD_NAMES", "FRAMES", "MAX_SNAPSHOTS", "animate", "draw_frame", "flow_mesh", "in_frame", "output_files",
+           "pvd_text", "quad_cells", "refined", "require_meshio", "series_names", "write_vtu_series"]
 
 #: The fields of a snapshot besides its positions ``x`` and ``z``.
 FIELD_NAMES = ("vorticity", "stream_function", "u_x", "u_z")
 #: The frames a snapshot can be drawn in (module docstring).
 FRAMES = ("lab", "outer")
+#: Most snapshots a run may ask for: each is a VTU file and a frame of the animation (0.1-0.3 s to draw).
+MAX_SNAPSHOTS = 1000
 
 
 def require_meshio():
@@ -113,6 +115,12 @@ def series_names(count: int, stem: str = "flow") -> list[str]:
     """The file names of a series of ``count`` snapshots: stem_0000.vtu, ... (wider past 10^4)."""
     width = max(4, len(str(max(count - 1, 0))))
     return [f"{stem}_{i:0{width}d}.vtu" for i in range(count)]
+
+
+def output_files(stem: str = "flow") -> frozenset[str]:
+    """Every file a series of up to :data:`MAX_SNAPSHOTS` snapshots may leave in a folder: the VTU files
+    (:func:`series_names`), the collection ``stem.pvd`` and the animation ``stem.gif``."""
+    return frozenset({f"{stem}.pvd", f"{stem}.gif", *series_names(MAX_SNAPSHOTS, stem)})
 
 
 def pvd_text(files: Sequence[str], times: Sequence[float]) -> str:

@@ -278,7 +278,8 @@ def _section_classes() -> dict[str, type]:
 
     classes = {"apparatus": Apparatus, "fluid": Apparatus, "incline": Apparatus, "groups": schema.Groups,
                "initial": schema.Initial, "model": schema.Model, "contact": schema.Contact,
-               "cavitation": schema.Cavitation, "run": schema.Run}
+               "cavitation": schema.Cavitation, "navier_stokes": schema.NavierStokes,
+               "run": schema.Run}
     missing = set(schema.SECTIONS) - set(classes)
     if missing:
         msg = f"the scene reference does not know the section(s) {sorted(missing)}: add their dataclass"

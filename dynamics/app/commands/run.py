@@ -16,11 +16,14 @@ def register(subparsers) -> None:
     p = subparsers.add_parser(
         "run", help="run a scene and write its trajectory",
         description="Integrate a scene (the embedded default when none is given) and write "
-                    "trajectory.csv, summary.json, trajectory.png and scene.resolved.toml into DIR.")
+                    "trajectory.csv, summary.json, trajectory.png and scene.resolved.toml into DIR (and a "
+                    "Navier-Stokes run's flow snapshots: flow_NNNN.vtu, flow.pvd, flow.gif).")
     p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded steel scene)")
     p.add_argument("-o", "--output", default="snail-output", help="output folder (default snail-output)")
     p.add_argument("--t-end", help="run length: seconds, or a string with units such as '2 min'")
-    p.add_argument("--model", choices=["full", "reduced", "auto"], help="equations of motion, overriding the scene")
+    p.add_argument("--model", choices=["full", "reduced", "navier-stokes", "auto"],
+                   help="equations of motion, overriding the scene (navier-stokes: the unsteady flow of the gap "
+                        "coupled to both cylinders, set by the scene's [navier_stokes] section)")
     p.add_argument("--forces", metavar="MODEL",
                    help="force model, overriding the scene: a registered model (snail forces --help lists them; "
                         "stokes-exact, the scenes' default: the exact 2-D Stokes "
@@ -48,7 +51,7 @@ def _run_scene(args) -> int:
 
 
 def _run_scene_drawing(args, figures) -> int:
-    from dynamics.app.output import write_outputs
+    from dynamics.app.output import output_names, write_outputs
     from dynamics.app.run import run_scene
     from dynamics.equations.limits import ValidityWarning
     from dynamics.scenes import SceneError, load_scene, resolved_toml
@@ -67,7 +70,7 @@ def _run_scene_drawing(args, figures) -> int:
         overrides.append(f'model.forces="{args.forces}"')
     try:
         scene = load_scene(args.scene, overrides)
-        folder = OutputFolder(args.output).__enter__()  # checked and locked before anything runs
+        folder = OutputFolder(args.output, output_names()).__enter__()  # checked and locked before anything runs
     except (SceneError, FolderError) as err:
         raise UsageError(str(err)) from err
     bar = progress_bar(scene.run.t_end, "s" if scene.apparatus is not None else "tau", "snail run")
@@ -91,7 +94,8 @@ def _run_scene_drawing(args, figures) -> int:
         with held_signals():  # a computed run is written whole: a signal meanwhile takes effect after
             info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
                                  plot=figures is not None, max_rows=scene.run.max_rows,
-                                 draw=figures.png if figures is not None else None)
+                                 draw=figures.png if figures is not None else None,
+                                 animation=scene.navier_stokes.animation if scene.navier_stokes else "none")
     finally:
         folder.__exit__(None, None, None)
     if args.json:
