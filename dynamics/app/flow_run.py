@@ -1,9 +1,9 @@
 """``snail flow``'s run and its output set: a :class:`FlowSpec` stepped, then forces.csv, summary.json, snapshots.
 
 :func:`run_flow` steps :class:`lubrication.unsteady.UnsteadySolver` through the prescribed
-motion as :func:`lubrication.unsteady.run_prescribed` does (the same first step, largest
-step and landing on the snapshot times), and adds what a command needs and that driver
-does not offer: the time reached reported as it goes, and a stop on Ctrl-C or SIGTERM
+motion with the loop of :func:`lubrication.unsteady.run_prescribed`
+(:func:`lubrication.unsteady.prescribed.march`: the same first step, largest step and
+landing on the snapshot times), and adds what a command needs and that driver does not: the time reached reported as it goes, and a stop on Ctrl-C or SIGTERM
 (or a failed step) that keeps everything computed so far. :func:`write_flow_outputs`
 writes the set through an :class:`~numerics.folder.OutputFolder`: whole, or not at all.
 """
@@ -11,7 +11,6 @@ writes the set through an :class:`~numerics.folder.OutputFolder`: whole, or not 
 from __future__ import annotations
 
 import io
-import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,7 +23,8 @@ from lubrication.unsteady import (
     PrescribedRun,
     StepControl,
     UnsteadySolver,
-    prescribed_wall,
+    first_steps,
+    march,
 )
 from numerics.engine import Interrupts
 from numerics.files import write_json, write_text
@@ -71,51 +71,30 @@ def run_flow(spec: FlowSpec, *, progress=None) -> FlowRun:
     motion, t_end = spec.motion, spec.t_end
     solver = UnsteadySolver(spec.a, spec.b, spec.nu, spec.rho, spec.resolution, control=StepControl(rtol=spec.rtol))
     solver.start(motion.position(0.0), motion.velocities(0.0))
-    # run_prescribed's steps: the first 1e-3 of the faster of the viscous time and the motion's
-    # period, at least 60 steps a period
-    fastest = motion.fastest()
-    viscous = spec.delta**2 / spec.nu
-    dt = 1e-3 * (viscous if fastest == 0.0 else min(viscous, 1.0 / fastest))
-    dt_max = 0.1 / fastest if fastest > 0.0 else math.inf
+    dt, dt_max = first_steps(spec.delta, spec.nu, motion)
     targets = list(spec.snapshot_times)
     series = {name: [] for name in COLUMNS}
     snapshots = []
 
-    def record():
-        level = solver.state
+    def record(level):
         for name, value in zip(COLUMNS, (level.t, level.z_a.real, level.z_a.imag, *level.loads)):
             series[name].append(value)
         while targets and targets[0] <= level.t + 1e-12 * t_end:  # the steps land on them
             targets.pop(0)
             snapshots.append({"t": level.t, **solver.fields(), "theta_b": float(turned_angle(motion.omega_b, level.t)),
                               "omega_b": float(motion.omega_b.value(level.t))})
+        if progress is not None and level.t > 0.0:
+            progress(level.t)
 
-    record()
+    record(solver.state)
     status, reason = "completed", f"reached t_end = {t_end:.6g} s"
     with Interrupts() as interrupts:
         try:
-            while solver.state.t < t_end * (1.0 - 1e-12):
-                t_now = solver.state.t
-                if interrupts.received:  # checked before every attempt: rejected steps too
-                    status = "interrupted"
-                    reason = f"interrupted by {interrupts.received} at t = {t_now:.6g} s"
-                    break
-                target = targets[0] if targets else t_end
-                h = min(dt, dt_max, target - t_now)
-                if target - t_now - h < 0.05 * h:  # no sliver of a step before the target
-                    h = target - t_now
-                t_new = t_now + h
-                result = solver.step(h, prescribed_wall(motion.velocities(t_new)), motion.position(t_new))
-                if not result.accepted:
-                    dt = result.dt_next
-                    if dt < 1e-14 * max(t_end, 1.0):
-                        raise RuntimeError(f"step size underflow ({result.reason})")
-                    continue
-                record()
-                # a step shortened to land on a target does not shrink the next one
-                dt = max(result.dt_next, dt) if h < dt else result.dt_next
-                if progress is not None:
-                    progress(solver.state.t)
+            why = march(solver, motion, t_end, dt=dt, dt_max=dt_max, targets=targets, on_step=record,
+                        stop=lambda: interrupts.received and
+                        f"interrupted by {interrupts.received} at t = {solver.state.t:.6g} s")
+            if why:
+                status, reason = "interrupted", why
         except (ArithmeticError, ValueError, RuntimeError) as err:
             status = "failed"
             reason = f"{type(err).__name__} at t = {solver.state.t:.6g} s: {err}"

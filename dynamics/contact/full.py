@@ -98,6 +98,7 @@ __all__ = [
     "ContactFunctions",
     "FullContactRun",
     "contact_functions",
+    "phases_in_tau",
     "friction_coefficient",
     "impact",
     "slip",
@@ -419,10 +420,15 @@ def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams
         start = run.touch(y0, initial.phi)
     else:
         start = run.free(y0)
-    tau = apparatus.tau
+    return phases_in_tau(run, start, apparatus.tau, t_end, initial.phi, method=method, rtol=rtol, t_eval=t_eval,
+                         steps=steps, max_steps=max_steps, max_switches=max_switches, progress=progress)
+
+
+def phases_in_tau(run, start, tau: float, t_end: float, phi0: float, **options) -> dict:
+    """The phases of a full-model contact ``run`` from ``start`` (:func:`numerics.hybrid.run_phases`, in
+    seconds), its times and switches returned in units of ``tau``; ``options`` go to ``run_phases``."""
     fields = run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
-                        run.columns, t_end, phi0=initial.phi, method=method, rtol=rtol, t_eval=t_eval, steps=steps,
-                        max_steps=max_steps, max_switches=max_switches, progress=progress)
+                        run.columns, t_end, phi0=phi0, **options)
     fields["t"] = fields["t"] / tau
     fields["switches"] = tuple(sw._replace(t=sw.t / tau) for sw in fields["switches"])
     return fields

@@ -142,7 +142,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from dynamics.contact.full import LOCKED_EVENTS, SLIDING_EVENTS, friction_coefficient
+from dynamics.contact.full import LOCKED_EVENTS, SLIDING_EVENTS, friction_coefficient, phases_in_tau
 from dynamics.contact.laws import COMPLIANT, gw_load, height_scale
 from dynamics.contact.laws import friction_coefficient as stribeck_mu
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING
@@ -151,7 +151,7 @@ from dynamics.equations import full
 from dynamics.equations.limits import Limits
 from lubrication.geometry import check_range
 from lubrication.kernels import KernelModel
-from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
+from numerics.hybrid import MAX_SWITCHES, Phase
 from numerics.jit import jit, specialise
 
 __all__ = [
@@ -797,10 +797,5 @@ def run_rough_full(apparatus, force_model: KernelModel, rough: RoughContact, ini
             start = run.touch(y0, initial.phi)
         else:
             start = run.free(y0)
-    tau = apparatus.tau
-    fields = run_phases(start, lambda phase, reason, t, end, phi: run.transition(phase, reason, end, phi),
-                        run.columns, t_end, phi0=initial.phi, method=method, rtol=rtol, t_eval=t_eval, steps=steps,
-                        max_steps=max_steps, max_switches=max_switches, progress=progress)
-    fields["t"] = fields["t"] / tau
-    fields["switches"] = tuple(sw._replace(t=sw.t / tau) for sw in fields["switches"])
-    return fields
+    return phases_in_tau(run, start, apparatus.tau, t_end, initial.phi, method=method, rtol=rtol, t_eval=t_eval,
+                         steps=steps, max_steps=max_steps, max_switches=max_switches, progress=progress)

@@ -20,7 +20,7 @@ that solves the new flow and the new wall velocities in one linear system.
 """
 
 from .mapping import MIN_ONE_MINUS_KAPPA_UNSTEADY, AnnulusMap
-from .prescribed import Harmonic, PrescribedMotion, PrescribedRun, run_prescribed
+from .prescribed import Harmonic, PrescribedMotion, PrescribedRun, first_steps, march, run_prescribed
 from .resolution import Resolution, default_resolution
 from .snapshots import (
     FRAMES,
@@ -43,5 +43,5 @@ from .timestepping import Bdf
 
 __all__ = ["LOAD_NAMES", "MIN_ONE_MINUS_KAPPA_UNSTEADY", "VELOCITY_NAMES", "AnnulusMap", "Bdf", "FlowLevel",
            "Harmonic", "PrescribedMotion", "PrescribedRun", "Resolution", "StepControl", "StepResult",
-           "UnsteadySolver", "default_resolution", "prescribed_wall", "run_prescribed"]
+           "UnsteadySolver", "default_resolution", "first_steps", "march", "prescribed_wall", "run_prescribed"]
 __all__ += ["FRAMES", "animate", "draw_frame", "flow_mesh", "in_frame", "write_vtu_series"]

@@ -20,7 +20,7 @@ from .mapping import MIN_ONE_MINUS_KAPPA_UNSTEADY
 from .resolution import Resolution, default_resolution
 from .solver import StepControl, UnsteadySolver, prescribed_wall
 
-__all__ = ["Harmonic", "PrescribedMotion", "PrescribedRun", "run_prescribed"]
+__all__ = ["Harmonic", "PrescribedMotion", "PrescribedRun", "first_steps", "march", "run_prescribed"]
 
 
 @dataclass(frozen=True)
@@ -136,6 +136,54 @@ class PrescribedRun:
     wall_time_s: float = 0.0
 
 
+def first_steps(delta: float, nu: float, motion: PrescribedMotion) -> tuple[float, float]:
+    """The first step and the largest step of a prescribed motion (s): 1e-3 of the shorter of the viscous
+    time delta^2/nu and 1/(fastest frequency), and at least 60 steps a period of the fastest harmonic."""
+    fastest = motion.fastest()
+    viscous = delta * delta / nu
+    return 1e-3 * (viscous if fastest == 0.0 else min(viscous, 1.0 / fastest)), (
+        0.1 / fastest if fastest > 0.0 else math.inf)
+
+
+def march(solver: UnsteadySolver, motion: PrescribedMotion, t_end: float, *, dt: float, dt_max: float,
+          targets: list, on_step, stop=None, dt_fixed: float | None = None) -> str | None:
+    """Step ``solver`` with the walls on ``motion`` to ``t_end``, landing on the times of ``targets``.
+
+    ``on_step(level)`` is called after every accepted step; it pops the targets it has handled (a
+    step shortened to land on the first target does not shrink the next one). ``stop()``, if given,
+    is asked before every attempt (rejected steps too): a string it returns stops the march and is
+    returned. Returns None at ``t_end``.
+
+    Raises
+    ------
+    RuntimeError
+        When the step size underflows.
+    """
+    eps_t = 1e-12 * t_end
+    while solver.state.t < t_end - eps_t:
+        if stop is not None and (why := stop()):
+            return why
+        t_now = solver.state.t
+        target = min([t_end, *targets[:1]])
+        h = min(dt, dt_max, target - t_now)
+        if target - t_now - h < 0.05 * h:  # do not leave a sliver before the target
+            h = target - t_now
+        t_new = t_now + h
+        res = solver.step(h, prescribed_wall(motion.velocities(t_new)), motion.position(t_new))
+        if not res.accepted:
+            dt = res.dt_next
+            if dt < 1e-14 * max(t_end, 1.0):
+                msg = f"step size underflow at t = {t_now:.6g} s ({res.reason})"
+                raise RuntimeError(msg)
+            continue
+        on_step(solver.state)
+        if dt_fixed is None:
+            dt = max(res.dt_next, dt) if h < dt else res.dt_next
+        else:
+            dt = dt_fixed
+    return None
+
+
 def run_prescribed(a: float, b: float, nu: float, rho: float, motion: PrescribedMotion, t_end: float, *,
                    resolution: Resolution | None = None, control: StepControl | None = None, g_eff=0j,
                    dt_initial: float | None = None, dt_max: float | None = None,
@@ -195,14 +243,12 @@ def run_prescribed(a: float, b: float, nu: float, rho: float, motion: Prescribed
         worst = AnnulusMap(a, b, (motion.position(t_max) / max(abs(motion.position(t_max)), 1e-300)) * eps_max)
         solver.resolution = default_resolution(worst)
     solver.start(motion.position(0.0), motion.velocities(0.0))
-    fastest = motion.fastest()
-    scale = delta * delta / nu if fastest == 0.0 else min(delta * delta / nu, 1.0 / fastest)
-    dt = dt_fixed or (dt_initial if dt_initial is not None else 1e-3 * scale)
+    dt, dt_max_rule = first_steps(delta, nu, motion)
+    dt = dt_fixed or (dt_initial if dt_initial is not None else dt)
     dt_max = math.inf if dt_max is None else check_range("dt_max", dt_max, 0.0, math.inf, low_open=True, unit="s")
-    if fastest > 0.0:
-        dt_max = min(dt_max, 0.1 / fastest)  # at least 60 steps a period
     snaps = sorted(float(s) for s in snapshot_times if 0.0 <= float(s) <= t_end)
     out = {k: [] for k in ("t", "x_a", "z_a", "F_x", "F_z", "T_a", "T_b")}
+    snapshots = []
 
     def record(level):
         out["t"].append(level.t)
@@ -210,36 +256,13 @@ def run_prescribed(a: float, b: float, nu: float, rho: float, motion: Prescribed
         out["z_a"].append(level.z_a.imag)
         for i, k in enumerate(("F_x", "F_z", "T_a", "T_b")):
             out[k].append(level.loads[i])
+        while snaps and snaps[0] <= level.t + 1e-12 * t_end:  # the steps land on them
+            snapshots.append({"t": level.t, **solver.fields()})
+            snaps.pop(0)
 
     record(solver.state)
-    snapshots = []
-    while snaps and snaps[0] <= 0.0:
-        snapshots.append({"t": 0.0, **solver.fields()})
-        snaps.pop(0)
-    eps_t = 1e-12 * t_end
-    while solver.state.t < t_end - eps_t:
-        t_now = solver.state.t
-        target = min([t_end, *snaps[:1]])
-        h = min(dt, dt_max, target - t_now)
-        if target - t_now - h < 0.05 * h:  # do not leave a sliver before the target
-            h = target - t_now
-        t_new = t_now + h
-        res = solver.step(h, prescribed_wall(motion.velocities(t_new)), motion.position(t_new))
-        if not res.accepted:
-            dt = res.dt_next
-            if dt < 1e-14 * max(t_end, 1.0):
-                msg = f"step size underflow at t = {t_now:.6g} s ({res.reason})"
-                raise RuntimeError(msg)
-            continue
-        record(solver.state)
-        if snaps and abs(solver.state.t - snaps[0]) <= eps_t:
-            snapshots.append({"t": solver.state.t, **solver.fields()})
-            snaps.pop(0)
-        if dt_fixed is None:
-            # keep the step that landed on a target from shrinking the next one
-            dt = max(res.dt_next, dt) if h < dt else res.dt_next
-        else:
-            dt = dt_fixed
+    march(solver, motion, t_end, dt=dt, dt_max=min(dt_max, dt_max_rule), targets=snaps, on_step=record,
+          dt_fixed=dt_fixed)
     c = solver.counters
     arrays = {k: np.array(v) for k, v in out.items()}
     return PrescribedRun(**arrays, resolution=solver.resolution, snapshots=snapshots, steps=c.steps,
