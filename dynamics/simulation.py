@@ -248,7 +248,7 @@ def _warn(trajectory: Trajectory) -> None:
 #: The equations :func:`simulate` integrates.
 EQUATIONS = ("full", "reduced", "navier-stokes")
 #: The flow solver's default relative error per step (vorticity, wall velocities, A's position): its
-#: trajectories' error against halved tolerances is in docs/navier_stokes.md.
+#: trajectories' change when it is quartered (and on finer grids) is in docs/navier_stokes.md.
 NAVIER_STOKES_RTOL = 1e-4
 
 

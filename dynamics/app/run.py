@@ -8,7 +8,7 @@ from dynamics.app.auto import resolve_model
 from dynamics.contact.laws import Compliance, Stribeck
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact, Spectrum
-from dynamics.scenes import Scene, SceneError
+from dynamics.scenes import NavierStokes, Scene, SceneError
 from dynamics.simulation import simulate
 from dynamics.trajectory import Trajectory
 from lubrication import registry
@@ -75,7 +75,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if model.equations == "navier-stokes":
         from dynamics.equations.navier_stokes import NavierStokesOptions
 
-        settings = scene.navier_stokes
+        settings = scene.navier_stokes or NavierStokes()  # a Scene built in Python may leave it out
         rtol = settings.rtol
         navier_stokes = NavierStokesOptions(n_r=settings.n_r, n_theta=settings.n_theta,
                                             snapshot_times=settings.snapshot_times(run.t_end))
