@@ -49,3 +49,9 @@ def quick_group(tmp_path_factory):
         return done[name]
 
     return run
+
+
+def pytest_collection_modifyitems(config, items):
+    """The documentation's build first: the longest file of the run, it goes to one process at the start
+    while the other runs the rest, rather than last while the other waits."""
+    items.sort(key=lambda item: item.path.name != "test_docs.py")
