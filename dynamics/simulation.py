@@ -131,7 +131,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         msg = (f"the {equations} equations need a physical apparatus: pass an Apparatus (Apparatus.from_groups "
                "builds one)")
         raise ValueError(msg)
-    navier_stokes = _check_navier_stokes(equations, navier_stokes, contact, frame_terms)
+    navier_stokes = _check_navier_stokes(equations, navier_stokes, contact, frame_terms, method)
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
@@ -252,7 +252,7 @@ EQUATIONS = ("full", "reduced", "navier-stokes")
 NAVIER_STOKES_RTOL = 1e-4
 
 
-def _check_navier_stokes(equations, options, contact, frame_terms):
+def _check_navier_stokes(equations, options, contact, frame_terms, method):
     """The Navier-Stokes options, refused where they do not apply, and what the flow does not take."""
     from dynamics.equations.navier_stokes import NavierStokesOptions
 
@@ -264,6 +264,9 @@ def _check_navier_stokes(equations, options, contact, frame_terms):
         raise ValueError("contact: the Navier-Stokes equations run without a contact model (smooth walls)")
     if frame_terms != "paper":
         raise ValueError("frame_terms closes the ODE models' fluid inertia; the Navier-Stokes equations have none")
+    if method != "radau":
+        raise ValueError(f"method picks the ODE models' integrator, got {method!r}; the Navier-Stokes equations "
+                         "step with their own IMEX BDF2 (lubrication.unsteady.timestepping)")
     if options is None:
         return NavierStokesOptions()
     if not isinstance(options, NavierStokesOptions):

@@ -176,6 +176,7 @@ def test_regrid_carries_the_flow_exactly():
     ({"equations": "navier-stokes", "contact": object()}, "contact"),
     ({"equations": "navier-stokes", "frame_terms": "quasi-steady"}, "frame_terms"),
     ({"equations": "full", "navier_stokes": NavierStokesOptions()}, "navier_stokes options"),
+    ({"equations": "navier-stokes", "method": "BDF"}, "method picks the ODE models' integrator"),
 ])
 def test_what_the_coupled_run_does_not_take(kwargs, words):
     with pytest.raises(ValueError, match=words):

@@ -339,6 +339,7 @@ def _trajectory(run, ap, initial, table, kinds, stop, status_code, message, code
               "steps": solver.counters.steps, "nfev": solver.counters.solves, "njev": 0,
               "nlu": solver.counters.factorisations}
     trajectory = run.trajectory(fields, "navier-stokes", "navier-stokes", ap.reduced_params)
+    trajectory.method = "imex-bdf2"  # the flow's own stepping, not the ODE integrator's
     trajectory.info.pop("inertia", None)  # the quasi-steady models' error estimate: none here
     trajectory.columns["t"] = np.minimum(trajectory.columns["t"], run.t_end)  # t/tau*tau may pass t_end by an ulp
     # the loads at the rows the trajectory kept (each a row of the table: interpolation only absorbs rounding)
