@@ -85,7 +85,10 @@ def unsteadiness(trajectory, a: float, b: float) -> dict[str, float]:
         from dynamics.fit import STATISTICS, summary_statistics
 
         rising = np.concatenate(([True], dt > 0))  # an event row repeats its time
-        stats = dict(zip(STATISTICS, summary_statistics(t[rising], x_b[rising], a, b)))
+        try:
+            stats = dict(zip(STATISTICS, summary_statistics(t[rising], x_b[rising], a, b)))
+        except ValueError:  # its own window (the half less a tenth) does not roll forward: no spectrum
+            return out
         out.update(power_at_2pi_a=stats["power_at_2pi_a"], power_at_2pi_b=stats["power_at_2pi_b"])
     return out
 

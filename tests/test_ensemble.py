@@ -68,6 +68,17 @@ def test_a_run_without_contact_or_rows_gives_nan_where_it_cannot_say():
     assert set(got) == set(UNSTEADINESS)
 
 
+def test_a_run_that_rolls_back_late_has_no_spectrum_and_is_not_a_failure():
+    """Forward over the second half, backward over its last nine tenths (where the spectrum is read)."""
+    t = np.linspace(0.0, 100.0, 2001)
+    x_b = np.where(t < 55.0, 1e-3 * t, 0.055 - 1e-6 * (t - 55.0))
+    record = SimpleNamespace(columns={"t": t, "x_b": x_b, "phi": np.full(t.size, math.pi),
+                                      "one_minus_kappa": np.full(t.size, 1e-2), "omega_b": np.zeros(t.size)},
+                             events=[])
+    got = unsteadiness(record, A, B)
+    assert got["mean_speed_late"] > 0 and math.isnan(got["power_at_2pi_a"])
+
+
 def test_ensemble_statistics_of_values_known_by_hand():
     rows = [{"incline.alpha": "0.04", "contact.seed": str(s), "mean_speed_late": str(v)} for s, v in
             enumerate((1.0, 2.0, 3.0, 4.0))]

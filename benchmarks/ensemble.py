@@ -1,0 +1,126 @@
+"""What an ensemble of rough runs costs: realisations per second on the sweep machinery, against ``snail run``.
+
+The apparatus of the paper's Table 3 runs (steel, 500 cSt, 2.4 degrees), its surfaces rough
+(amplitude 0.5, correlation 1 mm, the paper's friction angle, sigma = 50 um) and turning with
+both cylinders, in the full equations (2.1)-(2.4) with the exact Stokes forces, released at
+kappa = 0.5, phi = 0.5 and run for ``T_END``; one realisation per seed. Two ways:
+
+* a sweep over a ``contact.seed`` axis on a local cluster of two worker processes
+  (:func:`dynamics.app.sweeps.run.run_sweep`, which also writes ``ensemble.csv``): wall
+  time from the call to its return, cluster start included, after one sweep that leaves the
+  kernels compiled in numba's cache;
+* the same realisations one by one through ``snail run --no-plot`` in a new process each, as a
+  user would without the sweep.
+
+Reported: the medians of ``ROUNDS`` interleaved rounds, realisations per second and the ratio.
+Run from the project root with ``python -m benchmarks.ensemble``; writes
+``benchmarks/results/ensemble.json`` and ``.md``.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+if __package__ in (None, ""):
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from benchmarks.harness import machine, publish, speed_gauge_ms, spread
+
+T_END = "60 s"
+SEEDS = 8  # realisations of the sweep
+ONE_BY_ONE = 4  # realisations run through snail run (each a new process)
+ROUNDS = 3
+SCENE = f"""[apparatus]
+preset = "steel"
+[fluid]
+nu = "500 cSt"
+[incline]
+alpha = "2.4 deg"
+[initial]
+kappa = 0.5
+phi = 0.5
+[contact]
+sigma = "50 um"
+friction_angle = "5 deg"
+roughness_amplitude = 0.5
+roughness_correlation = "1 mm"
+[run]
+t_end = "{T_END}"
+max_gap_reynolds = "none"
+output_interval = "0.1 s"
+"""
+
+
+def _sweep_seconds(folder: Path, seeds: int) -> float:
+    from dynamics.app.sweeps.run import run_sweep
+    from dynamics.app.sweeps.spec import parse_sweep
+
+    (folder / "scene.toml").write_text(SCENE)
+    sweep = parse_sweep(f'base = "scene.toml"\n[axes]\n"contact.seed" = {{start = 0, stop = {seeds - 1}, '
+                        f'num = {seeds}}}\n', base_dir=folder)
+    start = time.perf_counter()
+    result = run_sweep(sweep, folder / "out", workers=2, progress=False)
+    seconds = time.perf_counter() - start
+    if result.regimes.get("failed"):
+        msg = f"{result.regimes['failed']} realisations failed"
+        raise RuntimeError(msg)
+    return seconds
+
+
+def _one_by_one_seconds(folder: Path, count: int) -> float:
+    (folder / "scene.toml").write_text(SCENE)
+    start = time.perf_counter()
+    for seed in range(count):
+        subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", str(folder / "scene.toml"), "--no-plot",
+                        "--set", f"contact.seed={seed}", "-o", str(folder / f"run{seed}")], check=True,
+                       capture_output=True)
+    return time.perf_counter() - start
+
+
+def run() -> dict:
+    results = {"machine": machine(), "speed_gauge_ms_at_start": speed_gauge_ms(), "t_end": T_END,
+               "seeds": SEEDS, "one_by_one": ONE_BY_ONE}
+    with tempfile.TemporaryDirectory() as tmp:
+        warm = Path(tmp) / "warm"
+        warm.mkdir()
+        _sweep_seconds(warm, 2)  # the kernels compiled into numba's cache
+        sweep, single = [], []
+        for r in range(ROUNDS):
+            for kind in (("sweep", "single") if r % 2 == 0 else ("single", "sweep")):
+                folder = Path(tmp) / f"{kind}{r}"
+                folder.mkdir()
+                if kind == "sweep":
+                    sweep.append(_sweep_seconds(folder, SEEDS))
+                else:
+                    single.append(_one_by_one_seconds(folder, ONE_BY_ONE))
+    per_sweep = spread([s / SEEDS for s in sweep])
+    per_single = spread([s / ONE_BY_ONE for s in single])
+    results.update(sweep_seconds=spread(sweep), one_by_one_seconds=spread(single),
+                   seconds_per_realisation_sweep=per_sweep, seconds_per_realisation_one_by_one=per_single,
+                   realisations_per_second_sweep=1.0 / per_sweep["median"],
+                   ratio_one_by_one_over_sweep=per_single["median"] / per_sweep["median"],
+                   speed_gauge_ms_at_end=speed_gauge_ms())
+    lines = ["# Ensembles of rough full-model runs", "",
+             f"Steel, 500 cSt, 2.4 deg, rough surfaces turning with both cylinders (amplitude 0.5, correlation 1 mm, "
+             f"sigma 50 um, friction angle 5 deg), full equations with the exact Stokes forces, {T_END} each; "
+             f"{ROUNDS} interleaved rounds, medians (fastest-slowest). {results['machine']['cpu']}, "
+             f"{results['machine']['cores']} cores.", "",
+             "| how | realisations | wall (s) | s per realisation | realisations per second |", "|---|---|---|---|---|",
+             f"| sweep on 2 workers (cluster start included) | {SEEDS} | {results['sweep_seconds']['median']:.1f} "
+             f"({results['sweep_seconds']['min']:.1f}-{results['sweep_seconds']['max']:.1f}) | {per_sweep['median']:.2f} | "
+             f"{1.0 / per_sweep['median']:.2f} |",
+             f"| `snail run --no-plot`, one process each | {ONE_BY_ONE} | {results['one_by_one_seconds']['median']:.1f} "
+             f"({results['one_by_one_seconds']['min']:.1f}-{results['one_by_one_seconds']['max']:.1f}) | "
+             f"{per_single['median']:.2f} | {1.0 / per_single['median']:.2f} |", "",
+             f"One by one takes {results['ratio_one_by_one_over_sweep']:.2f} times as long per realisation. At the "
+             f"sweep's rate, 1,000 realisations would take {1000 * per_sweep['median'] / 60:.0f} min."]
+    publish("ensemble", results, "\n".join(lines))
+    return results
+
+
+if __name__ == "__main__":
+    run()
