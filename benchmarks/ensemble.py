@@ -117,7 +117,7 @@ def run() -> dict:
              f"({results['one_by_one_seconds']['min']:.1f}-{results['one_by_one_seconds']['max']:.1f}) | "
              f"{per_single['median']:.2f} | {1.0 / per_single['median']:.2f} |", "",
              f"One by one takes {results['ratio_one_by_one_over_sweep']:.2f} times as long per realisation. At the "
-             f"sweep's rate, 1,000 realisations would take {1000 * per_sweep['median'] / 60:.0f} min."]
+             f"sweep's rate, its cluster's start included, 1,000 realisations would take at most {1000 * per_sweep['median'] / 60:.0f} min."]
     publish("ensemble", results, "\n".join(lines))
     return results
 
