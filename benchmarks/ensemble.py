@@ -81,6 +81,11 @@ def _one_by_one_seconds(folder: Path, count: int) -> float:
     return time.perf_counter() - start
 
 
+def _row(how: str, count: int, wall: dict, per: dict) -> str:
+    return (f"| {how} | {count} | {wall['median']:.1f} ({wall['min']:.1f}-{wall['max']:.1f}) | {per['median']:.2f} | "
+            f"{1.0 / per['median']:.2f} |")
+
+
 def run() -> dict:
     results = {"machine": machine(), "speed_gauge_ms_at_start": speed_gauge_ms(), "t_end": T_END,
                "seeds": SEEDS, "one_by_one": ONE_BY_ONE}
@@ -110,14 +115,12 @@ def run() -> dict:
              f"{ROUNDS} interleaved rounds, medians (fastest-slowest). {results['machine']['cpu']}, "
              f"{results['machine']['cores']} cores.", "",
              "| how | realisations | wall (s) | s per realisation | realisations per second |", "|---|---|---|---|---|",
-             f"| sweep on 2 workers (cluster start included) | {SEEDS} | {results['sweep_seconds']['median']:.1f} "
-             f"({results['sweep_seconds']['min']:.1f}-{results['sweep_seconds']['max']:.1f}) | {per_sweep['median']:.2f} | "
-             f"{1.0 / per_sweep['median']:.2f} |",
-             f"| `snail run --no-plot`, one process each | {ONE_BY_ONE} | {results['one_by_one_seconds']['median']:.1f} "
-             f"({results['one_by_one_seconds']['min']:.1f}-{results['one_by_one_seconds']['max']:.1f}) | "
-             f"{per_single['median']:.2f} | {1.0 / per_single['median']:.2f} |", "",
+             _row("sweep on 2 workers (cluster start included)", SEEDS, results["sweep_seconds"], per_sweep),
+             _row("`snail run --no-plot`, one process each", ONE_BY_ONE, results["one_by_one_seconds"], per_single),
+             "",
              f"One by one takes {results['ratio_one_by_one_over_sweep']:.2f} times as long per realisation. At the "
-             f"sweep's rate, its cluster's start included, 1,000 realisations would take at most {1000 * per_sweep['median'] / 60:.0f} min."]
+             f"sweep's rate, its cluster's start included, 1,000 realisations would take at most "
+             f"{1000 * per_sweep['median'] / 60:.0f} min."]
     publish("ensemble", results, "\n".join(lines))
     return results
 
