@@ -33,10 +33,10 @@ def ctrl_c():
     signal.signal(signal.SIGINT, previous)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def quick_group(tmp_path_factory):
     """``quick_group(name)``: the quick form of the group of ``snail validate`` that ``validation.reports.<name>``
-    runs, as (folder, records, figure names, paragraph); run once a session, into a folder of its own."""
+    runs, as (folder, records, figure names, paragraph); run once a test file, into a folder of its own."""
     from validation import suite
 
     modules = {module.__name__.rpartition(".")[2]: module for module in suite.GROUPS.values()}
