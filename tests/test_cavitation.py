@@ -149,7 +149,9 @@ def _check_solution(sol, annulus, motion, model, p_cav, p_ref):
         assert np.all(np.abs(sol.mass_residual[1:]) <= 1e-10 * terms + floor)
 
 
-@settings(max_examples=150, deadline=None)
+# the same examples on every run: a default run that fails, fails for every reader (the random search is
+# the slow test's, over the wide domain)
+@settings(max_examples=150, deadline=None, derandomize=True)
 @given(
     kappa=st.floats(0.0, 0.999),
     eps_dot=st.floats(-1e-3, 1e-3),
