@@ -23,9 +23,16 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import inspect
+import tempfile
 import time
 import types
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # not POSIX: no lock, each process compiles for itself
+    fcntl = None
 
 from numba import njit
 from numba.core import caching, event
@@ -39,7 +46,7 @@ from numerics.stamps import (
     stamped_roots,
 )
 
-__all__ = ["JIT_OPTIONS", "CompileWatch", "compile_watch", "jit", "package_stamp", "sources_hash", "sources_stamp", "specialise", "stamp_kernels",
+__all__ = ["JIT_OPTIONS", "CompileWatch", "compile_shared", "compile_watch", "jit", "package_stamp", "sources_hash", "sources_stamp", "specialise", "stamp_kernels",
            "stamped_roots"]
 
 #: Options every kernel is compiled with; a kernel may add ``inline`` or ``parallel``.
@@ -52,6 +59,30 @@ def jit(func=None, **extra):
     if func is None:
         return njit(**options)
     return njit(**options)(func)
+
+
+def compile_shared(dispatcher, signature) -> None:
+    """``dispatcher.compile(signature)``, at most one process of this machine compiling it at a time.
+
+    The others wait for it and then load the compiled code from numba's disk cache,
+    where compiling alongside would double the cost (the engine's driver: about 40 s;
+    a sweep's batch loop: about 70 s) on cores that are already busy: the workers of
+    a sweep and the processes of a test run start on the same kernels together.
+    The lock is an ``flock`` on a file in the temporary folder named after the
+    function's file, name and signature; the system releases it if its holder dies.
+    """
+    if fcntl is None:
+        dispatcher.compile(signature)
+        return
+    py_func = dispatcher.py_func
+    key = f"{inspect.getfile(py_func)}:{py_func.__qualname__}:{signature}"
+    lock = Path(tempfile.gettempdir()) / f"numba-compile-{hashlib.sha256(key.encode()).hexdigest()[:16]}.lock"
+    with lock.open("a") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            dispatcher.compile(signature)
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
 
 
 #: The globals each (module, template, name) was compiled with, in this process.

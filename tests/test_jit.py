@@ -154,3 +154,44 @@ def test_an_edit_to_a_called_module_recompiles_its_caller(tmp_path):
     assert run(2.0) == (7.0, 0)  # compiled and cached
     assert run(2.0) == (7.0, 1)  # loaded from the cache
     assert run(5.0) == (16.0, 0)  # the callee edited: compiled anew
+
+
+_SHARED = '''
+import sys
+import time
+from pathlib import Path
+
+from numba import types
+
+from numerics.jit import compile_shared, jit
+
+
+@jit
+def kernel(x):
+    total = 0.0
+    for i in range(10):
+        total += x ** i / (1.0 + i)
+    return total
+
+
+print("ready", flush=True)
+while not Path(sys.argv[1]).exists():
+    time.sleep(0.005)
+compile_shared(kernel, (types.float64,))
+print(sum(kernel.stats.cache_misses.values()), sum(kernel.stats.cache_hits.values()))
+'''
+
+
+def test_processes_starting_together_compile_a_kernel_once(tmp_path):
+    """Of two processes that ask for the same kernel at the same moment, one compiles and the other loads it."""
+    (tmp_path / "probe_shared.py").write_text(_SHARED)
+    go = tmp_path / "go"
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_")}
+    env["PYTHONPATH"] = os.pathsep.join([str(tmp_path), str(Path(_jit.__file__).resolve().parents[1])])
+    procs = [subprocess.Popen([sys.executable, "probe_shared.py", str(go)], cwd=tmp_path, env=env,
+                              stdout=subprocess.PIPE, text=True) for _ in range(2)]
+    for proc in procs:
+        assert proc.stdout.readline().strip() == "ready"
+    go.touch()
+    counts = [tuple(int(n) for n in proc.communicate(timeout=120)[0].split()) for proc in procs]
+    assert sorted(counts) == [(0, 1), (1, 0)]  # (compiled, loaded) in each process

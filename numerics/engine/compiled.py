@@ -33,7 +33,7 @@ from numba import types
 from numba.core.types.function_type import WrapperAddressProtocol
 from numba.extending import typeof_impl
 
-from numerics.jit import sources_hash, specialise
+from numerics.jit import compile_shared, sources_hash, specialise
 
 from . import driver
 from .state import STATE_TYPE
@@ -62,7 +62,7 @@ def function_types(args_type):
 def _closed(py_func, signature):
     """``py_func`` compiled (or loaded from the cache) for ``signature`` only, filed under the sources' hash."""
     dispatcher = specialise(py_func, SOURCES_HASH)
-    dispatcher.compile(signature)
+    compile_shared(dispatcher, signature)
     dispatcher.disable_compile()
     return dispatcher
 
@@ -95,7 +95,7 @@ class _Address(WrapperAddressProtocol):
 
     def __init__(self, dispatcher, function_type):
         signature = function_type.signature
-        dispatcher.compile(signature.args)
+        compile_shared(dispatcher, signature.args)
         cres = dispatcher.get_compile_result(signature)
         self._address = cres.library.get_pointer_to_function(cres.fndesc.llvm_cfunc_wrapper_name)
         self._signature = signature

@@ -37,7 +37,7 @@ from dynamics.equations import reduced
 from numerics import engine
 from numerics.engine.driver import solve
 from numerics.engine.state import STATUS, STEPS, STOP_EVENT
-from numerics.jit import jit
+from numerics.jit import compile_shared, jit
 
 __all__ = ["RAISED", "integrate_points", "warm"]
 
@@ -110,7 +110,7 @@ def warm():
         try:
             with warnings.catch_warnings():
                 warnings.filterwarnings("ignore", message=_GIL_NOTE)
-                dispatcher.compile(_SIGNATURE)
+                compile_shared(dispatcher, _SIGNATURE)
         except Exception as err:
             _COMPILED.append(err)
             raise
