@@ -39,8 +39,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import expit, logit
 
-__all__ = ["STATISTICS", "FitResult", "Prior", "abc_posterior", "coverage", "fit", "read_fit_scene", "read_record",
-           "reference_table", "simulate_record", "summary_statistics"]
+__all__ = ["STATISTICS", "FitResult", "Prior", "abc_posterior", "coverage", "distance_spectrum", "fit",
+           "read_fit_scene", "read_record", "reference_table", "simulate_record", "summary_statistics"]
 
 #: The summary statistics, in the order of :func:`summary_statistics`.
 STATISTICS = ("log_mean_speed", "speed_variation", "power_at_2pi_a", "power_at_2pi_b", "correlation_at_2pi_a",
@@ -91,13 +91,18 @@ def _speed(t: np.ndarray, x_b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return x[1:-1], (x[2:] - x[:-2]) / (t[2:] - t[:-2])
 
 
-def summary_statistics(t, x_b, a: float, b: float) -> np.ndarray:
-    """The :data:`STATISTICS` of a record X_b(t) (s, m) of a device of radii ``a``, ``b`` (m).
+def distance_spectrum(t, x_b) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """The speed's fluctuation against the distance rolled, and its periodogram.
 
-    The speed's fluctuation is taken against the distance rolled, where the surfaces' features
-    recur: resampled at equal distances, its power (periodogram) in the band of wavelengths
-    within 10 % of 2 pi a and of 2 pi b over its whole power, and its correlation with itself
-    shifted by one inner and one outer turn (0 where the record is shorter than the shift).
+    The record X_b(t) after its transient (the first ``TRANSIENT`` share) gives the speed at each sample
+    (central differences), resampled at equal distances rolled: the surfaces' features recur
+    in distance, not in time. Returns the fluctuation u about the mean speed on that grid,
+    the wavelengths (inf for the mean) and the periodogram |FFT(u)|^2 of each, and the mean speed.
+
+    Raises
+    ------
+    ValueError
+        For fewer than 16 increasing times, or a record that does not roll forward.
     """
     t, x_b = np.asarray(t, dtype=float), np.asarray(x_b, dtype=float)
     if t.ndim != 1 or t.size < 16 or t.shape != x_b.shape or not np.all(np.diff(t) > 0):
@@ -110,11 +115,24 @@ def summary_statistics(t, x_b, a: float, b: float) -> np.ndarray:
         raise ValueError(msg)
     grid = np.linspace(x[0], x[-1], x.size)
     u = np.interp(grid, x, v) - mean
-    dx = grid[1] - grid[0]
     power = np.abs(np.fft.rfft(u)) ** 2
-    wavelength = np.divide(grid.size * dx, np.arange(power.size), out=np.full(power.size, np.inf),
-                           where=np.arange(power.size) > 0)
+    wavelength = np.divide(x[-1] - x[0] + (grid[1] - grid[0]), np.arange(power.size),
+                           out=np.full(power.size, np.inf), where=np.arange(power.size) > 0)
+    return u, wavelength, power, mean
+
+
+def summary_statistics(t, x_b, a: float, b: float) -> np.ndarray:
+    """The :data:`STATISTICS` of a record X_b(t) (s, m) of a device of radii ``a``, ``b`` (m).
+
+    The speed's fluctuation is taken against the distance rolled (:func:`distance_spectrum`):
+    its power in the band of wavelengths within 10 % of 2 pi a and of 2 pi b over its whole
+    power, and its correlation with itself shifted by one inner and one outer turn (0 where
+    the record is shorter than the shift).
+    """
+    u, wavelength, power, mean = distance_spectrum(t, x_b)
+    dx = wavelength[1] / u.size
     total = max(float(np.sum(power[1:])), 1e-300)
+    v = _speed(np.asarray(t, dtype=float), np.asarray(x_b, dtype=float))[1]  # at the samples, as recorded
 
     def band(length: float) -> float:
         inside = np.abs(wavelength / length - 1.0) < 0.1
