@@ -283,6 +283,7 @@ def run_case(case: Case) -> Outcome:
         text = (err.getvalue() + out.getvalue()).replace(str(tmp), "<tmp>")
         text = re.sub(r"steps in [0-9.]+ s", "steps in <time> s", text)  # wall times vary from run to run
         text = re.sub(r"snail \w+: compiling [^\n]*\n", "", text)  # only when numba's cache is cold
+        text = re.sub(r" \(and [0-9.]+ s compiling\)", "", text)  # likewise
         text = text.replace(f"[1, {max_workers()}] (this machine's cores)", "[1, <cores>] (this machine's cores)")
         left = code == 2 and (tmp / "out").exists()  # refused input leaves nothing; a stopped run keeps its data
         intact = (tmp / "full" / "notes.txt").read_text() == "keep me" and (tmp / "file").read_text() == "a file"
