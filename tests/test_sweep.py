@@ -3,6 +3,7 @@
 import csv
 import math
 import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from dynamics.app.sweeps.point import classify_point, run_point
 from dynamics.app.sweeps.run import run_sweep
 from dynamics.app.sweeps.spec import SweepError, load_sweep, parse_sweep, point_key
 from dynamics.app.sweeps.store import NUMBERS, Table, read_rows
+from dynamics.scenes import parse_scene
 from dynamics.trajectory import Trajectory
 
 # mu_ = 1 and Upsilon = 1 as in the paper's figures 2 (s = 1/4 rocks) and 3 (s = 0.9 runs away).
@@ -204,7 +206,6 @@ def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage)
     import subprocess
     import sys
     import time
-    from pathlib import Path
 
     examples = Path(__file__).resolve().parents[1] / "dynamics" / "app" / "sweeps" / "examples"
     proc = subprocess.Popen([sys.executable, "-m", "dynamics.app.cli", "sweep", str(examples / "slope_kappa.toml"),
@@ -224,3 +225,18 @@ def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage)
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert time.perf_counter() - start < 30
+
+
+def test_every_shipped_sweep_parses_and_its_base_scene_is_valid():
+    """The examples of docs/site/sweeps.md, the Navier-Stokes resolution study among them."""
+    examples = Path(__file__).resolve().parents[1] / "dynamics" / "app" / "sweeps" / "examples"
+    for path in sorted(examples.glob("*.toml")):
+        text = path.read_text()
+        if "[axes]" not in text:
+            continue  # a base scene
+        sweep = load_sweep(path)
+        first = next(iter(sweep.points()))
+        parse_scene(sweep.base, sweep.source, first)
+    ns = load_sweep(examples / "navier_stokes_resolution.toml")
+    assert len(list(ns.points())) == 6
+    assert parse_scene(ns.base, ns.source).model.equations == "navier-stokes"
