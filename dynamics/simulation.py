@@ -33,6 +33,8 @@ from dynamics.equations.limits import (
     Limits,
     ValidityWarning,
     inertia_warning,
+    stokes_message,
+    unsteady_error,
 )
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
@@ -187,6 +189,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         raise ValueError(msg)
     model = (None if equations != "full" or film else forces if isinstance(forces, KernelModel)
              else kernel_model(forces))
+    past_stokes = _check_stokes(system, limits, equations, frame_terms)
     bar = _Bar(t_end, unit) if progress is True else None
     run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms)
     start = time.perf_counter()
@@ -207,6 +210,8 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
             bar.close()
     if equations == "full":
         trajectory.info["frame_terms"] = frame_terms
+    if past_stokes is not None:
+        trajectory.info["limits_passed"] = [past_stokes, *trajectory.info.get("limits_passed", [])]
     trajectory.compile_time_s = watch.compile_s
     trajectory.wall_time_s = time.perf_counter() - start - watch.compile_s
     _warn(trajectory)
@@ -231,6 +236,21 @@ class _Bar:
 
     def close(self) -> None:
         self.bar.close()
+
+
+def _check_stokes(system, limits: Limits, equations: str, frame_terms: str) -> dict | None:
+    """A quasi-steady run of a device whose Stokes number exceeds ``max_stokes_number``: refused (ValueError)
+    if the limits stop, else the record of its passage at t = 0. None within the limit, for the coupled
+    Navier-Stokes run, and without an apparatus."""
+    if not isinstance(system, Apparatus) or equations == "navier-stokes":
+        return None
+    stokes = system.delta**2 / (system.nu * system.tau)
+    if stokes <= limits.stokes:
+        return None
+    unsteady = unsteady_error(stokes, frame_terms)
+    if limits.stops:
+        raise ValueError(stokes_message(limits, unsteady, stopping=True))
+    return {"name": "stokes", "t": 0.0, "reason": stokes_message(limits, unsteady, stopping=False)}
 
 
 def _warn(trajectory: Trajectory) -> None:

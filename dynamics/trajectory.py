@@ -283,7 +283,9 @@ class Recorder:
             trajectory.regime, trajectory.evidence = classify(trajectory)
             if not self.dimensionless:
                 trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns,
-                                                            corrected=self.inertia_corrected)
+                                                            corrected=self.inertia_corrected,
+                                                            frame_terms=self.frame_terms,
+                                                            regime=trajectory.regime)
         if warned:
             t_of = {id(e): float(fields["t"][i]) for e, i in zip(along, on_event)}  # in tau, as error_at's keys
             trajectory.info["limits_passed"] = [

@@ -14,6 +14,7 @@ import json
 import math
 
 import pytest
+from apparatus import OIL, A, L
 
 from dynamics.app.auto import (
     Choice,
@@ -24,11 +25,10 @@ from dynamics.app.auto import (
     study,
 )
 from dynamics.app.cli import main
+from dynamics.equations.limits import unsteady_error
 from dynamics.scenes import parse_scene
 from lubrication.geometry import Annulus, Resistance
 from lubrication.registry import resistance
-
-from apparatus import A, L, OIL
 
 THIN, APPARATUS = 0.01, 0.40625  # a = 0.8 cm, b = 1.125 cm
 SEPARATING = 5e-2
@@ -250,6 +250,11 @@ t_end = "1 s"
     model, record = resolve_model(scene)
     assert model.equations == "full"  # reduced error 0.66 at delta/a = 0.406 exceeds 1e-2
     assert "exceeds the tolerance" in record["equations"]["reason"] and model.forces == "stokes-exact"
+    # the ODE models' measured error against Navier-Stokes for this fluid, and whether it alone exceeds the tolerance
+    ap = scene.apparatus
+    release = unsteady_error(ap.delta**2 / (ap.nu * ap.tau))["by_start"]["release"]
+    assert f"misplace a rocking release's x_b by {release:.1e}" in record["equations"]["reason"]
+    assert ("no ODE model meets it" in record["equations"]["reason"]) == (release > 0.01)
 
 
 def test_snail_run_records_the_choice_in_the_summary(tmp_path, capsys):

@@ -247,6 +247,22 @@ def choose_equations(tolerance: float, delta_over_a: float, forces: str = "auto"
                   "the more accurate measured")
 
 
+def _unsteady_note(scene, tolerance: float) -> str:
+    """The ODE models' error in x_b measured against Navier-Stokes runs at the scene's Stokes number, and what
+    to do where that alone exceeds ``tolerance``."""
+    from dynamics.equations.limits import unsteady_error
+
+    ap = scene.apparatus
+    unsteady = unsteady_error(ap.delta**2 / (ap.nu * ap.tau))
+    by_start = unsteady["by_start"]
+    note = (f"; against Navier-Stokes runs the full equations with exact forces misplace a rocking release's x_b "
+            f"by {by_start['release']:.1e} ({by_start['runaway']:.1e} a runaway's) at this fluid's Stokes number "
+            f"{unsteady['stokes_number']:.3g} (docs/stokes_limit.md)")
+    if by_start["release"] > tolerance:
+        note += ", more than the tolerance: no ODE model meets it, equations = 'navier-stokes' has no such error"
+    return note
+
+
 def resolve_model(scene) -> tuple:
     """The scene's model with every "auto" replaced by a choice, and the choices as a dict.
 
@@ -276,6 +292,8 @@ def resolve_model(scene) -> tuple:
                                            f"{' with cavitation' if scene.cavitation is not None else ''}")
         else:
             chosen = choose_equations(model.tolerance, delta, model.forces)
+        if scene.apparatus is not None:
+            chosen = dataclasses.replace(chosen, reason=chosen.reason + _unsteady_note(scene, model.tolerance))
         equations = chosen.model
         record["equations"] = chosen.as_dict()
     forces, reynolds = model.forces, {}

@@ -12,8 +12,11 @@ whatever ``on_invalid`` says: that bounds the cost of a run, not its validity.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass
+from functools import cache
+from importlib import resources
 
 import numpy as np
 
@@ -21,10 +24,10 @@ from dynamics.equations.full import frame_force
 from numerics.jit import jit
 from numerics.keys import check_fields, key
 
-__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MAX_REYNOLDS", "MAX_TURNS", "MIN_GAP_FLOOR_FULL", "ON_INVALID",
-           "VALIDITY_EVENTS", "WARN_FORCE_ERROR", "Limits", "ValidityWarning", "estimated_force_error",
+__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MAX_REYNOLDS", "MAX_STOKES", "MAX_TURNS", "MIN_GAP_FLOOR_FULL",
+           "ON_INVALID", "VALIDITY_EVENTS", "WARN_FORCE_ERROR", "Limits", "ValidityWarning", "estimated_force_error",
            "first_order_force_over_weight", "frame_force_over_weight", "inertia_report", "inertia_warning",
-           "limit_message", "reduced_reynolds"]
+           "limit_message", "reduced_reynolds", "stokes_message", "unsteady_error"]
 
 #: The continuum film loses its meaning near 1 - kappa ~ 1e-7 (a molecule across the paper's
 #: 3.25 mm gap); the mathematical model is followed two decades further, so that its own approach
@@ -59,6 +62,27 @@ MIN_GAP_FLOOR_FULL = 1e-10
 MAX_REYNOLDS = 1.0
 #: Estimated relative force error above which a run warns (summary and standard error).
 WARN_FORCE_ERROR = 0.1
+
+
+@cache
+def _stokes_study() -> dict:
+    return json.loads(resources.files("dynamics").joinpath("data", "stokes_error.json").read_text(encoding="utf-8"))
+
+
+def _two_digits_down(x: float) -> float:
+    scale = 10.0 ** (math.floor(math.log10(x)) - 1)
+    return math.floor(x / scale) * scale
+
+
+#: The Stokes number St = delta^2 / (nu tau) measures the unsteady inertia of the flow in the gap, which every
+#: ODE model leaves out (it takes the flow as quasi-steady). Measured against the coupled Navier-Stokes run
+#: (docs/stokes_limit.md, validation/stokes_limit.py): the error of x_b along a rocking release grows from
+#: 1.8% at St = 0.075 to 4.9% at 7.5, and a runaway's is 7.5-8.4% over St = 0.019-0.96. It does not vanish with
+#: St: (2.4) drops the fluid's own angular momentum, whose share of the device's (7.6% for the aluminium
+#: cylinder) the runaway's error matches. The default limit is the largest St measured (rounded down to two
+#: digits): beyond it no estimate exists. A device's St is fixed by its fluid (St goes as 1/nu^2): the limit is
+#: judged before a run.
+MAX_STOKES = _two_digits_down(max(st for st, _ in _stokes_study()["families"]["release"]["paper"]))
 #: Rocking turns the outer cylinder only slowly; a runaway is stopped after this many turns.
 MAX_TURNS = 100.0
 ON_INVALID = ("stop", "warn")
@@ -81,6 +105,12 @@ class Limits:
                           choices=ON_INVALID)
     max_turns: float = key(MAX_TURNS, help="turns of the outer cylinder after which a runaway is stopped",
                            low=0.0, bounds="()")
+    max_stokes_number: float | None = key(MAX_STOKES, help="largest Stokes number delta^2/(nu tau) of the fluid's "
+                                          "unsteady inertia, which the quasi-steady ODE models leave out; the "
+                                          "default is the largest at which their x_b error was measured against "
+                                          "Navier-Stokes runs (docs/stokes_limit.md); judged before the run; "
+                                          "'none' for no limit",
+                                          low=0.0, bounds="()", none="none")
 
     def __post_init__(self):
         check_fields(self)
@@ -94,6 +124,44 @@ class Limits:
     def reynolds(self) -> float:
         """The Reynolds limit as a number (inf for none)."""
         return math.inf if self.max_gap_reynolds is None else self.max_gap_reynolds
+
+    @property
+    def stokes(self) -> float:
+        """The Stokes-number limit as a number (inf for none)."""
+        return math.inf if self.max_stokes_number is None else self.max_stokes_number
+
+
+def unsteady_error(stokes_number: float, frame_terms: str = "paper", regime: str | None = None) -> dict:
+    """The measured relative error of x_b of the quasi-steady models at ``stokes_number``, and what it rests on.
+
+    Measured for two starts, a rocking release and a runaway, with the full equations, the exact Stokes
+    forces and ``frame_terms``, at several St (``dynamics/data/stokes_error.json``, from
+    ``validation.stokes_limit``): interpolated linearly in log St between them, the nearest measured value
+    outside them (the error tends to a floor at small St). With the run's ``regime`` the estimate is that of
+    the start of the same kind (a runaway's, else the release's); without it (before a run), the larger.
+    ``measured_to_stokes_number``: the largest St measured for that start; beyond it the value is held.
+    """
+    study = _stokes_study()
+    by_start, reach = {}, {}
+    for label, family in study["families"].items():
+        st, error = np.array(family[frame_terms]).T
+        by_start[label] = float(np.interp(math.log(stokes_number), np.log(st), error))
+        reach[label] = float(st[-1])
+    start = max(by_start, key=by_start.get) if regime is None else "runaway" if regime == "runaway" else "release"
+    return {"stokes_number": stokes_number, "estimated_x_b_error": by_start[start], "from_start": start,
+            "by_start": by_start, "horizon": study["horizon"][start],
+            "measured_to_stokes_number": reach[start], "basis": study["basis"]}
+
+
+def stokes_message(limits: Limits, unsteady: dict, stopping: bool) -> str:
+    """Why a run is refused (``stopping``) or went on past ``max_stokes_number``, from :func:`unsteady_error`."""
+    head = (f"the Stokes number delta^2/(nu tau) = {unsteady['stokes_number']:.3g} exceeds max_stokes_number = "
+            f"{limits.stokes:g}: the ODE models were measured against Navier-Stokes runs up to St = "
+            f"{unsteady['measured_to_stokes_number']:.3g}, where they misplace x_b by "
+            f"{_percent(unsteady['estimated_x_b_error'])} within {unsteady['horizon']} (docs/stokes_limit.md)")
+    if stopping:
+        return head + "; on_invalid = 'warn' runs it anyway, equations = 'navier-stokes' without that error"
+    return head
 
 
 def limit_message(name: str, limits: Limits, when: str, error: float | None = None,
@@ -208,7 +276,8 @@ def _frame_force_magnitudes(p, eps, eps_dot, chi_dot, omega_a, omega_b):
     return out
 
 
-def inertia_report(apparatus, columns: dict, corrected: bool = False) -> dict:
+def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_terms: str = "paper",
+                   regime: str | None = None) -> dict:
     """How far a run's quasi-steady Stokes forces can be trusted, from its SI columns.
 
     Returns, each with the time at which it occurred: the largest reduced Reynolds
@@ -221,7 +290,9 @@ def inertia_report(apparatus, columns: dict, corrected: bool = False) -> dict:
     frame that (2.1)-(2.2) as printed leave out, over m'_a g
     (:func:`frame_force_over_weight`); the squeeze Reynolds number
     |eps'| delta / nu, which the estimate does not cover; and the Stokes number
-    delta^2/(nu tau) of the unsteady inertia no steady solve sees. With
+    delta^2/(nu tau) of the unsteady inertia no steady solve sees, with the
+    error of x_b it implies for ``frame_terms`` and the run's ``regime`` (``unsteady``:
+    :func:`unsteady_error`). With
     ``corrected`` (forces that carry the first inertial correction), also
     ``corrected_forces``: the largest estimated error those forces leave
     (:func:`lubrication.inertia.corrected_error_estimate`), its time, and the
@@ -249,7 +320,8 @@ def inertia_report(apparatus, columns: dict, corrected: bool = False) -> dict:
               "max_first_order_force_over_weight": max_first, "t_at_max_first_order_force": t_first,
               "max_frame_force_over_weight": max_frame, "t_at_max_frame_force": t_frame,
               "max_squeeze_reynolds": float(np.abs(columns["kappa_dot"]).max(initial=0.0) * ap.delta**2 / ap.nu),
-              "stokes_number": ap.delta**2 / (ap.nu * ap.tau)}
+              "stokes_number": ap.delta**2 / (ap.nu * ap.tau),
+              "unsteady": unsteady_error(ap.delta**2 / (ap.nu * ap.tau), frame_terms, regime)}
     if corrected:
         from lubrication.inertia import CORRECTED_MEASURED_TO, corrected_error_estimate
 
@@ -277,8 +349,22 @@ def inertia_warning(inertia: dict) -> str:
 
     The forces the run used are judged: the quasi-steady Stokes forces by their
     first-order error, forces with the first inertial correction by what that
-    leaves, and by whether the run went past the Reynolds numbers at which it was measured.
+    leaves, and by whether the run went past the Reynolds numbers at which it was measured;
+    and the quasi-steady flow by the error its Stokes number implies (:func:`unsteady_error`).
     """
+    unsteady = inertia.get("unsteady")
+    if unsteady is None or unsteady["estimated_x_b_error"] <= WARN_FORCE_ERROR:
+        return _force_warning(inertia)
+    kind = "runaway" if unsteady["from_start"] == "runaway" else "rocking release"
+    flow = (f"the quasi-steady flow (Stokes number {unsteady['stokes_number']:.3g}) may misplace x_b by an "
+            f"estimated {_percent(unsteady['estimated_x_b_error'])} within {unsteady['horizon']} (measured on a "
+            f"{kind}: docs/stokes_limit.md); equations = 'navier-stokes' has neither that nor (2.4)'s missing "
+            "fluid spin")
+    forces = _force_warning(inertia)
+    return f"{forces}; {flow}" if forces else flow
+
+
+def _force_warning(inertia: dict) -> str:
     corrected = inertia.get("corrected_forces")
     if corrected is not None:
         beyond = inertia["max_reduced_reynolds"] > corrected["measured_to_reduced_reynolds"]

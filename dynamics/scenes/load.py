@@ -631,7 +631,8 @@ def resolved_toml(scene: Scene) -> str:
     sections["run"] = {f"t_end{suffix}": run.t_end, "rtol": run.rtol}
     if run.output_interval is not None:
         sections["run"][f"output_interval{suffix}"] = run.output_interval
-    sections["run"].update(max_rows=run.max_rows, max_steps=run.max_steps, gap_floor=run.gap_floor, max_gap_reynolds=run.max_gap_reynolds,
+    sections["run"].update(max_rows=run.max_rows, max_steps=run.max_steps, gap_floor=run.gap_floor,
+                           max_gap_reynolds=run.max_gap_reynolds, max_stokes_number=run.max_stokes_number,
                            on_invalid=run.on_invalid)
     units = ("dimensionless: times in tau, rates in 1/tau, lengths in b" if scene.dimensionless
              else "SI units, angles in rad")

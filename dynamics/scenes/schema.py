@@ -267,6 +267,7 @@ class Run:
                          high=10_000_000, integer=True)
     gap_floor: float = _limit("gap_floor")
     max_gap_reynolds: float | None = _limit("max_gap_reynolds")
+    max_stokes_number: float | None = _limit("max_stokes_number")
     on_invalid: str = _limit("on_invalid")
 
     def __post_init__(self):
@@ -275,7 +276,8 @@ class Run:
     @property
     def limits(self) -> Limits:
         """The validity limits of :mod:`dynamics.equations.limits` this run asks for."""
-        return Limits(gap_floor=self.gap_floor, max_gap_reynolds=self.max_gap_reynolds, on_invalid=self.on_invalid)
+        return Limits(gap_floor=self.gap_floor, max_gap_reynolds=self.max_gap_reynolds,
+                      max_stokes_number=self.max_stokes_number, on_invalid=self.on_invalid)
 
 
 @dataclass(frozen=True)

@@ -132,6 +132,25 @@ def _frame_table(result: dict) -> list[str]:
     return lines
 
 
+def _cost_table(result: dict) -> list[str]:
+    import statistics
+
+    lines = ["| model | median abs. X_b error | largest | median abs. log10 gap ratio | largest | median wall per case (s) |",
+             "|---|---|---|---|---|---|"]
+    for label in result["models"]:
+        x = [abs(c["models"][label]["x_b_relative"]) for c in result["cases"]]
+        gap = [abs(c["models"][label]["log10_gap_ratio"]) for c in result["cases"]]
+        wall = [c["models"][label]["wall_time_s"] for c in result["cases"]]
+        lines.append(f"| {label} | {statistics.median(x):.3f} | {max(x):.3f} | {statistics.median(gap):.3g} | "
+                     f"{max(gap):.3g} | {statistics.median(wall):.3g} |")
+    wall = [c["navier_stokes"]["wall_time_s"] for c in result["cases"]]
+    lines.append(f"| Navier-Stokes (the reference) | its own error: at most "
+                 f"{max(reference_error(c, 'x_b_relative') for c in result['cases']):.1e} | | at most "
+                 f"{max(reference_error(c, 'log10_gap_ratio') for c in result['cases']):.1e} | | "
+                 f"{statistics.median(wall):.3g} |")
+    return lines
+
+
 def markdown(result: dict) -> str:
     """The page: what was run, the reference's own error, the error tables, the verdict and the checks."""
     checks = checks_of(result)
@@ -168,6 +187,11 @@ def markdown(result: dict) -> str:
     ]
     for measure in MEASURES:
         lines += [f"## {_MEASURE_TITLES[measure].capitalize()}", "", *_error_table(result, measure), ""]
+    lines += ["## Accuracy against cost along trajectories", "",
+              "Each model's errors over the five cases against the wall time of its runs (the ODEs at rtol "
+              f"{result['ode_rtol']:g}, one core, the median over the cases), beside the reference's own: what "
+              "a trajectory of each model buys, measured against the first principles rather than against "
+              "another quasi-steady model.", "", *_cost_table(result), ""]
     lines += ["## Frame terms: paper against quasi-steady", "",
               "With the exact forces and no inertial correction; \"by\" is the difference of the two |errors|, "
               "\"decided\" says whether it exceeds the reference's own error (the larger of its two checks).", "",

@@ -1,0 +1,118 @@
+"""The Stokes-number limit: the study's stored numbers, its page and package table, and the guard of every run.
+
+The study (validation/stokes_limit.py) measures the x_b error of the quasi-steady models against coupled
+Navier-Stokes runs at several viscosities; its conclusions are checks judged from the stored numbers, and the
+slow test reruns its cheapest point. The guard (dynamics.equations.limits) is tested on runs: a device over
+the limit is refused or flagged, the coupled run is not, and every run states the error its St implies.
+"""
+
+import json
+import math
+import warnings
+
+import pytest
+
+from dynamics import Initial, Limits, ValidityWarning, preset, simulate
+from dynamics.equations import limits
+from dynamics.scenes import SceneError, load_scene
+from generators.stokes_error import DATA_FILE, stokes_error
+from validation import stokes_limit as study
+from validation.checks import verdict
+from validation.reports import stokes_limit as report
+
+
+@pytest.fixture(scope="module")
+def stored():
+    return json.loads(study.RESULTS.read_text())
+
+
+def test_the_stored_numbers_carry_the_conclusions(stored):
+    assert [f["label"] for f in stored["families"]] == [f.label for f in study.FAMILIES]
+    for family, spec in zip(stored["families"], study.FAMILIES):
+        assert [p["nu"] for p in family["points"]] == list(spec.viscosities)
+        for p in family["points"]:
+            assert p["horizon_s"] == pytest.approx(spec.horizon(p["nu"]), rel=1e-12)
+    failed = [c.name for c in study.checks_of(stored) if not verdict(c.kind, c.measured, c.reference, c.tolerance)]
+    assert not failed
+
+
+def test_the_page_and_the_package_table_are_the_stored_numbers(stored):
+    assert report.PAGE.read_text() == report.markdown(stored)
+    assert json.loads(DATA_FILE.read_text()) == json.loads(json.dumps(stokes_error(stored)))
+
+
+def test_the_spin_share_is_the_fluid_annulus_moment_of_inertia():
+    """m_f (a^2 + b^2)/2 over itself plus (1/2) m_a a^2 + (M + m_b) b^2, from the device's numbers by hand."""
+    ap = preset("aluminium")
+    annulus = math.pi * (ap.b**2 - ap.a**2) * ap.length * ap.rho  # the fluid's mass, from its volume
+    spin = annulus * (ap.a**2 + ap.b**2) / 2.0
+    rolling = 0.5 * ap.m_a * ap.a**2 + (ap.m_a + ap.m_b + annulus + ap.m_f_ends + ap.m_b) * ap.b**2  # (M + m_b) b^2
+    assert study.spin_share(ap) == pytest.approx(spin / (spin + rolling), rel=1e-12)
+
+
+def test_the_estimate_is_the_measured_error_between_and_beyond_the_points(stored):
+    family = stored["families"][0]
+    for p in family["points"]:
+        got = limits.unsteady_error(p["stokes_number"], "paper", "rocking")["estimated_x_b_error"]
+        assert got == pytest.approx(abs(p["models"]["paper"]["x_b_relative"]), rel=1e-12)
+    first = family["points"][0]
+    below = limits.unsteady_error(0.1 * first["stokes_number"], "paper", "rocking")
+    assert below["estimated_x_b_error"] == pytest.approx(abs(first["models"]["paper"]["x_b_relative"]), rel=1e-12)
+    a, b = family["points"][1:3]
+    middle = math.sqrt(a["stokes_number"] * b["stokes_number"])  # halfway in log St
+    assert limits.unsteady_error(middle, "paper", "rocking")["estimated_x_b_error"] == pytest.approx(
+        0.5 * (abs(a["models"]["paper"]["x_b_relative"]) + abs(b["models"]["paper"]["x_b_relative"])), rel=1e-12)
+
+
+def test_the_estimate_follows_the_regime_and_before_a_run_takes_the_larger():
+    one = limits.unsteady_error(0.5)
+    assert one["estimated_x_b_error"] == max(one["by_start"].values())
+    rocking, runaway = (limits.unsteady_error(0.5, regime=r) for r in ("rocking", "runaway"))
+    assert rocking["from_start"] == "release" and runaway["from_start"] == "runaway"
+    assert rocking["estimated_x_b_error"] == rocking["by_start"]["release"]
+    assert limits.MAX_STOKES <= max(st for st, _ in json.loads(DATA_FILE.read_text())["families"]["release"]["paper"])
+
+
+def _fluid_with_stokes(stokes: float) -> float:
+    """The viscosity (m^2/s) that gives the steel device on 2.4 degrees this Stokes number (St ~ 1/nu^2)."""
+    ap = preset("steel")
+    return ap.nu * math.sqrt(ap.delta**2 / (ap.nu * ap.tau) / stokes)
+
+
+def test_a_device_past_the_limit_is_refused_or_flagged():
+    stokes = 2.0 * limits.MAX_STOKES
+    ap = preset("steel", nu=_fluid_with_stokes(stokes))
+    assert ap.delta**2 / (ap.nu * ap.tau) == pytest.approx(stokes, rel=1e-12)
+    start = Initial(kappa=0.5, phi=0.5)
+    with pytest.raises(ValueError, match="exceeds max_stokes_number"):
+        simulate(ap, start, 1e-3, limits=Limits(max_gap_reynolds=None))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidityWarning)
+        run = simulate(ap, start, 1e-3, limits=Limits(on_invalid="warn"))
+    passed = run.info["limits_passed"][0]
+    assert (passed["name"], passed["t"]) == ("stokes", 0.0)
+    assert any("max_stokes_number" in str(w.message) for w in caught)
+    within = simulate(ap, start, 1e-3, limits=Limits(max_stokes_number=1.01 * stokes, max_gap_reynolds=None))
+    assert all(p["name"] != "stokes" for p in within.info.get("limits_passed", []))
+    unsteady = within.info["inertia"]["unsteady"]
+    assert unsteady["stokes_number"] == pytest.approx(stokes, rel=1e-12)
+    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], "paper", within.regime)
+
+
+def test_scenes_take_the_limit_and_name_it_when_refused():
+    scene = load_scene(None, ["run.max_stokes_number=3"])
+    assert scene.run.limits.max_stokes_number == 3.0
+    assert load_scene(None, ["run.max_stokes_number=none"]).run.limits.stokes == math.inf
+    with pytest.raises(SceneError, match="run.max_stokes_number"):
+        load_scene(None, ["run.max_stokes_number=-1"])
+
+
+@pytest.mark.slow
+def test_a_rerun_gives_the_stored_numbers(stored):
+    """The release family's most viscous point, the cheapest: its errors again, within the reference's own."""
+    family = study.FAMILIES[0]
+    again = study.run_point(family, family.viscosities[0], log=lambda _: None)
+    kept = stored["families"][0]["points"][0]
+    for frame in study.FRAME_TERMS:
+        assert again["models"][frame]["x_b_relative"] == pytest.approx(
+            kept["models"][frame]["x_b_relative"], abs=kept["reference_error"] + 1e-9)
