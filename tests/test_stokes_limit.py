@@ -70,7 +70,7 @@ def test_the_estimate_follows_the_regime_and_before_a_run_takes_the_larger():
     rocking, runaway = (limits.unsteady_error(0.5, regime=r) for r in ("rocking", "runaway"))
     assert rocking["from_start"] == "release" and runaway["from_start"] == "runaway"
     assert rocking["estimated_x_b_error"] == rocking["by_start"]["release"]
-    assert limits.MAX_STOKES <= max(st for st, _ in json.loads(DATA_FILE.read_text())["families"]["release"]["paper"])
+    assert limits.MEASURED_STOKES <= max(st for st, _ in json.loads(DATA_FILE.read_text())["families"]["release"]["paper"])
 
 
 def _fluid_with_stokes(stokes: float) -> float:
@@ -79,24 +79,30 @@ def _fluid_with_stokes(stokes: float) -> float:
     return ap.nu * math.sqrt(ap.delta**2 / (ap.nu * ap.tau) / stokes)
 
 
-def test_a_device_past_the_limit_is_refused_or_flagged():
-    stokes = 2.0 * limits.MAX_STOKES
+def test_a_device_past_the_limit_is_refused_or_flagged_and_past_the_measured_range_warned():
+    stokes = 2.0 * limits.MEASURED_STOKES
     ap = preset("steel", nu=_fluid_with_stokes(stokes))
     assert ap.delta**2 / (ap.nu * ap.tau) == pytest.approx(stokes, rel=1e-12)
     start = Initial(kappa=0.5, phi=0.5)
+    bound = limits.MEASURED_STOKES
     with pytest.raises(ValueError, match="exceeds max_stokes_number"):
-        simulate(ap, start, 1e-3, limits=Limits(max_gap_reynolds=None))
+        simulate(ap, start, 1e-3, limits=Limits(max_stokes_number=bound, max_gap_reynolds=None))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ValidityWarning)
-        run = simulate(ap, start, 1e-3, limits=Limits(on_invalid="warn"))
+        run = simulate(ap, start, 1e-3, limits=Limits(max_stokes_number=bound, on_invalid="warn"))
     passed = run.info["limits_passed"][0]
     assert (passed["name"], passed["t"]) == ("stokes", 0.0)
     assert any("max_stokes_number" in str(w.message) for w in caught)
-    within = simulate(ap, start, 1e-3, limits=Limits(max_stokes_number=1.01 * stokes, max_gap_reynolds=None))
-    assert all(p["name"] != "stokes" for p in within.info.get("limits_passed", []))
-    unsteady = within.info["inertia"]["unsteady"]
+    # no limit by default: the run goes on, and says that its St is past the measured range
+    assert Limits().max_stokes_number is None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidityWarning)
+        free = simulate(ap, start, 1e-3, limits=Limits(max_gap_reynolds=None))
+    assert all(p["name"] != "stokes" for p in free.info.get("limits_passed", []))
+    assert any("the largest measured" in str(w.message) for w in caught)
+    unsteady = free.info["inertia"]["unsteady"]
     assert unsteady["stokes_number"] == pytest.approx(stokes, rel=1e-12)
-    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], "paper", within.regime)
+    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], "paper", free.regime)
 
 
 def test_scenes_take_the_limit_and_name_it_when_refused():

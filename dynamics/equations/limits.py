@@ -24,7 +24,7 @@ from dynamics.equations.full import frame_force
 from numerics.jit import jit
 from numerics.keys import check_fields, key
 
-__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MAX_REYNOLDS", "MAX_STOKES", "MAX_TURNS", "MIN_GAP_FLOOR_FULL",
+__all__ = ["GAP_FLOOR", "LIMIT_EVENTS", "MAX_REYNOLDS", "MAX_TURNS", "MEASURED_STOKES", "MIN_GAP_FLOOR_FULL",
            "ON_INVALID", "VALIDITY_EVENTS", "WARN_FORCE_ERROR", "Limits", "ValidityWarning", "estimated_force_error",
            "first_order_force_over_weight", "frame_force_over_weight", "inertia_report", "inertia_warning",
            "limit_message", "reduced_reynolds", "stokes_message", "unsteady_error"]
@@ -79,10 +79,11 @@ def _two_digits_down(x: float) -> float:
 #: (docs/stokes_limit.md, validation/stokes_limit.py): the error of x_b along a rocking release grows from
 #: 1.8% at St = 0.075 to 4.9% at 7.5, and a runaway's is 7.5-8.4% over St = 0.019-0.96. It does not vanish with
 #: St: (2.4) drops the fluid's own angular momentum, whose share of the device's (7.6% for the aluminium
-#: cylinder) the runaway's error matches. The default limit is the largest St measured (rounded down to two
-#: digits): beyond it no estimate exists. A device's St is fixed by its fluid (St goes as 1/nu^2): the limit is
-#: judged before a run.
-MAX_STOKES = _two_digits_down(max(st for st, _ in _stokes_study()["families"]["release"]["paper"]))
+#: cylinder) the runaway's error matches. MEASURED_STOKES is the largest St measured (rounded down to two
+#: digits): beyond it the stated error is held at the last measured value, and a run says so. A device's St is
+#: fixed by its fluid (St goes as 1/nu^2): a limit set in ``max_stokes_number`` is judged before a run. None by
+#: default: the models' own comparisons (the reduced model's limit, the paper's figures at its oils) run at any St.
+MEASURED_STOKES = _two_digits_down(max(st for st, _ in _stokes_study()["families"]["release"]["paper"]))
 #: Rocking turns the outer cylinder only slowly; a runaway is stopped after this many turns.
 MAX_TURNS = 100.0
 ON_INVALID = ("stop", "warn")
@@ -105,11 +106,11 @@ class Limits:
                           choices=ON_INVALID)
     max_turns: float = key(MAX_TURNS, help="turns of the outer cylinder after which a runaway is stopped",
                            low=0.0, bounds="()")
-    max_stokes_number: float | None = key(MAX_STOKES, help="largest Stokes number delta^2/(nu tau) of the fluid's "
-                                          "unsteady inertia, which the quasi-steady ODE models leave out; the "
-                                          "default is the largest at which their x_b error was measured against "
-                                          "Navier-Stokes runs (docs/stokes_limit.md); judged before the run; "
-                                          "'none' for no limit",
+    max_stokes_number: float | None = key(None, help="largest Stokes number delta^2/(nu tau) of the fluid's "
+                                          "unsteady inertia, which the quasi-steady ODE models leave out, judged "
+                                          "before the run; 'none' (the default): no limit, and a run past the "
+                                          "largest St at which their x_b error was measured against Navier-Stokes "
+                                          "runs (7.5, docs/stokes_limit.md) says so",
                                           low=0.0, bounds="()", none="none")
 
     def __post_init__(self):
@@ -353,13 +354,15 @@ def inertia_warning(inertia: dict) -> str:
     and the quasi-steady flow by the error its Stokes number implies (:func:`unsteady_error`).
     """
     unsteady = inertia.get("unsteady")
-    if unsteady is None or unsteady["estimated_x_b_error"] <= WARN_FORCE_ERROR:
+    beyond = unsteady is not None and unsteady["stokes_number"] > unsteady["measured_to_stokes_number"]
+    if unsteady is None or (unsteady["estimated_x_b_error"] <= WARN_FORCE_ERROR and not beyond):
         return _force_warning(inertia)
     kind = "runaway" if unsteady["from_start"] == "runaway" else "rocking release"
-    flow = (f"the quasi-steady flow (Stokes number {unsteady['stokes_number']:.3g}) may misplace x_b by an "
-            f"estimated {_percent(unsteady['estimated_x_b_error'])} within {unsteady['horizon']} (measured on a "
-            f"{kind}: docs/stokes_limit.md); equations = 'navier-stokes' has neither that nor (2.4)'s missing "
-            "fluid spin")
+    past = (f", past St = {unsteady['measured_to_stokes_number']:.3g}, the largest measured, where it was that much"
+            if beyond else "")
+    flow = (f"the quasi-steady flow (Stokes number {unsteady['stokes_number']:.3g}) may misplace x_b by "
+            f"{_percent(unsteady['estimated_x_b_error'])} within {unsteady['horizon']} (measured on a {kind}{past}: "
+            "docs/stokes_limit.md); equations = 'navier-stokes' has neither that nor (2.4)'s missing fluid spin")
     forces = _force_warning(inertia)
     return f"{forces}; {flow}" if forces else flow
 

@@ -121,8 +121,9 @@ def markdown(result: dict) -> str:
               *[f"* {family['title']}: {_frames(family)}" for family in result["families"]], "",
               "Each run states, in the `inertia` record of its summary.json (`unsteady`), the measured error at its "
               "Stokes number for its `frame_terms` and the kind of run it turned out to be (interpolated in log St "
-              "between the points above, the nearest point's outside them); `run.max_stokes_number`, by default the "
-              "largest St measured, refuses, or with `on_invalid = \"warn\"` flags, a device past it. The estimate "
+              "between the points above, the nearest point's outside them) and warns past the largest St measured; "
+              "`run.max_stokes_number`, when set, refuses, or with `on_invalid = \"warn\"` flags, a device past it. "
+              "The estimate "
               "is that of the full equations with the exact forces over the horizons above; a cheaper force model "
               "adds its own error, and a longer run can accumulate more.", "",
               "## Checks", "", "| check | measured | reference | tolerance | passed |", "|---|---|---|---|---|"]
