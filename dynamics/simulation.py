@@ -53,7 +53,7 @@ __all__ = ["EQUATIONS", "MAX_ROWS", "MAX_STEPS", "NAVIER_STOKES_RTOL", "Initial"
 def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, *, equations: str | None = None,
              forces: KernelModel | str = "stokes-exact", contact=None, limits: Limits = Limits(),
              method: str = "radau", rtol: float | None = None, output_interval: float | None = None, t_eval=None,
-             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper",
+             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper", fluid_spin: str = "none",
              navier_stokes=None) -> Trajectory:
     """Integrate a model of the snail cylinder from ``initial`` over ``t_end``.
 
@@ -103,6 +103,10 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         The full equations' treatment of the fluid turning with the line of
         centres: (2.1)-(2.2) as printed, or with m'_a on the centripetal and
         Coriolis terms (:func:`dynamics.equations.full.frame_force`).
+    fluid_spin : {"none", "couette"}
+        The fluid's own angular momentum in (2.4): dropped, as the paper
+        writes it, or that of the concentric Couette flow,
+        m_f (a^2 Omega_a + b^2 Omega_b)/2 (:data:`dynamics.equations.full.FLUID_SPIN`).
     navier_stokes : NavierStokesOptions, optional
         The flow solver's grid and the times of flow snapshots
         (:class:`dynamics.equations.navier_stokes.NavierStokesOptions`).
@@ -134,6 +138,13 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
                "builds one)")
         raise ValueError(msg)
     navier_stokes = _check_navier_stokes(equations, navier_stokes, contact, frame_terms, method)
+    if fluid_spin not in full.FLUID_SPIN:
+        msg = f"fluid_spin must be one of {', '.join(full.FLUID_SPIN)}, got {fluid_spin!r}"
+        raise ValueError(msg)
+    if fluid_spin != "none" and equations != "full":
+        msg = (f"fluid_spin applies to the full equations (2.4); the {equations} equations "
+               + ("drop the O(delta/a) fluid mass" if equations == "reduced" else "carry the fluid's spin themselves"))
+        raise ValueError(msg)
     if method not in METHODS:
         msg = f"method must be one of {', '.join(METHODS)}, got {method!r}"
         raise ValueError(msg)
@@ -191,7 +202,8 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
              else kernel_model(forces))
     past_stokes = _check_stokes(system, limits, equations, frame_terms)
     bar = _Bar(t_end, unit) if progress is True else None
-    run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms)
+    run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms,
+               fluid_spin)
     start = time.perf_counter()
     try:
         with compile_watch(on_first=bar.compiling if bar is not None else None) as watch:
@@ -210,6 +222,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
             bar.close()
     if equations == "full":
         trajectory.info["frame_terms"] = frame_terms
+        trajectory.info["fluid_spin"] = fluid_spin
     if past_stokes is not None:
         trajectory.info["limits_passed"] = [past_stokes, *trajectory.info.get("limits_passed", [])]
     trajectory.compile_time_s = watch.compile_s
@@ -403,11 +416,11 @@ class _Run(Recorder):
             runner = run_rough_full if isinstance(contact, RoughContact) else full_contact.run_full_contact
             fields = runner(ap, model, contact, initial, self.t_end, limits=self.limits, method=self.method,
                             rtol=self.rtol, t_eval=self.t_eval, steps=True, max_steps=self.max_steps,
-                            progress=self.progress, frame_terms=self.frame_terms)
+                            progress=self.progress, frame_terms=self.frame_terms, fluid_spin=self.fluid_spin)
             return self.contact_trajectory(fields, "full", model.name, ap.reduced_params)
         limits = self.limits
         args = full.run_args(ap, model, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
-                             max_turns=limits.max_turns, frame_terms=self.frame_terms)
+                             max_turns=limits.max_turns, frame_terms=self.frame_terms, fluid_spin=self.fluid_spin)
         y0 = full.initial_state(ap, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                                 initial.omega_a, initial.omega_b, one_minus_kappa=initial.gap)
         _check_reynolds_at_start(full.events(0.0, y0, args), limits)

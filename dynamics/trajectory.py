@@ -197,10 +197,11 @@ class Recorder:
     integrates, and hands its rows to :meth:`trajectory` or :meth:`Recorder.contact_trajectory`."""
 
     def __init__(self, system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress,
-                 frame_terms="paper"):
+                 frame_terms="paper", fluid_spin="none"):
         self.system, self.dimensionless, self.t_end = system, dimensionless, t_end
         self.limits, self.method, self.rtol = limits, method, rtol
         self.max_steps, self.progress, self.frame_terms = max_steps, progress, frame_terms
+        self.fluid_spin = fluid_spin
         self.tau = 1.0 if dimensionless else system.tau
         self.unit = "tau" if dimensionless else "s"
         self.t_eval = t_eval

@@ -64,9 +64,9 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if model.equations == "full":
         forces = _force_model(scene)
     elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != "paper"
-                                           or model.inertia != "none"):
+                                           or model.inertia != "none" or model.fluid_spin != "none"):
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
-                                  ("model.frame_terms", True)) if v)
+                                  ("model.fluid_spin", model.fluid_spin != "none"), ("model.frame_terms", True)) if v)
         raise _refuse(key, "the reduced equations (2.11) are leading order: per unit length of an infinitely long "
                            "annulus, in Stokes flow, without the O(delta/a) frame terms; this needs "
                            "model.equations = 'full'")
@@ -91,7 +91,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
         trajectory = simulate(system, scene.initial, run.t_end, equations=model.equations, forces=forces,
                               contact=contact, limits=limits, method=method, rtol=rtol,
                               output_interval=run.output_interval, max_steps=run.max_steps, progress=progress,
-                              frame_terms=model.frame_terms, navier_stokes=navier_stokes)
+                              frame_terms=model.frame_terms, fluid_spin=model.fluid_spin, navier_stokes=navier_stokes)
     except ValueError as err:
         raise SceneError(_resolution_reason(model, reach) if reach is not None and "gap floor" in str(err)
                          else str(err)) from err

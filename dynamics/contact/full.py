@@ -302,16 +302,17 @@ class FullContactRun:
     """What the phases of one full-model contact run share."""
 
     def __init__(self, apparatus, force_model: KernelModel, contact: ContactParams, limits: Limits, rtol: float,
-                 frame_terms: str = "paper"):
+                 frame_terms: str = "paper", fluid_spin: str = "none"):
         self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
-        self.p = full.params_array(apparatus, frame_terms)
+        self.p = full.params_array(apparatus, frame_terms, fluid_spin)
         self.model = full.model_arguments(force_model)
         self.functions = contact_functions(force_model)
         self.free_functions = full.model_functions(force_model)
         self.tan_psi_hat = friction_coefficient(apparatus, contact)
         self.free_args = full.run_args(apparatus, force_model, gap_floor=limits.gap_floor,
                                        max_reynolds=limits.reynolds, max_turns=limits.max_turns,
-                                       kappa_star=contact.kappa_star, frame_terms=frame_terms)
+                                       kappa_star=contact.kappa_star, frame_terms=frame_terms,
+                                       fluid_spin=fluid_spin)
         tau = apparatus.tau
         self.contact_typical = np.array([1.0, 1.0 / tau, 1.0 / tau, 1.0 / tau, apparatus.b])
         self.runaway = np.array([2.0 * math.pi * apparatus.b * limits.max_turns, 0.0])
@@ -404,7 +405,7 @@ class FullContactRun:
 def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams, initial, t_end: float, *,
                      limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
-                     frame_terms: str = "paper") -> dict:
+                     frame_terms: str = "paper", fluid_spin: str = "none") -> dict:
     """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
 
     Returns the fields of :func:`numerics.hybrid.run_phases` with times in
@@ -413,7 +414,7 @@ def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams
     :class:`~dynamics.simulation.Trajectory`. At kappa = kappa* the run starts as
     on touching.
     """
-    run = FullContactRun(apparatus, force_model, contact, limits, rtol, frame_terms)
+    run = FullContactRun(apparatus, force_model, contact, limits, rtol, frame_terms, fluid_spin)
     y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                             initial.omega_a, initial.omega_b)
     if initial.kappa >= contact.kappa_star * (1.0 - 1e-14):

@@ -524,12 +524,12 @@ class RoughFullRun:
     """What the phases of one rough full-model run share: device, surfaces, laws, limits, tolerances."""
 
     def __init__(self, apparatus, force_model: KernelModel, rough: RoughContact, limits: Limits, rtol: float,
-                 frame_terms: str = "paper"):
+                 frame_terms: str = "paper", fluid_spin: str = "none"):
         ap = apparatus
         self.ap, self.rough, self.limits, self.rtol = ap, rough, limits, rtol
         self.mean = rough.mean
         self.varies = rough.amplitude > 0.0
-        self.p = full.params_array(ap, frame_terms)
+        self.p = full.params_array(ap, frame_terms, fluid_spin)
         self.model = full.model_arguments(force_model)
         self.functions = rough_full_functions(force_model)
         self.free_functions = full.model_functions(force_model)
@@ -547,7 +547,7 @@ class RoughFullRun:
         tau = ap.tau
         self.free_args = full.run_args(ap, force_model, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
                                        max_turns=limits.max_turns, kappa_star=rough.mean.kappa_star,
-                                       frame_terms=frame_terms)
+                                       frame_terms=frame_terms, fluid_spin=fluid_spin)
         self.contact_typical = np.array([1.0, 1.0 / tau, 1.0 / tau, 1.0 / tau, ap.b])
         self.runaway = np.array([2.0 * math.pi * ap.b * limits.max_turns, 0.0])
         self.passive_free = 2 if self.varies else 0
@@ -770,7 +770,7 @@ class RoughFullRun:
 def run_rough_full(apparatus, force_model: KernelModel, rough: RoughContact, initial, t_end: float, *,
                    limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                    max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
-                   frame_terms: str = "paper") -> dict:
+                   frame_terms: str = "paper", fluid_spin: str = "none") -> dict:
     """The full model on rough surfaces from ``initial`` (SI) over ``t_end`` seconds.
 
     Theta_a starts at 0, so the initial body angles are theta_a = theta_b = phi0.
@@ -782,7 +782,7 @@ def run_rough_full(apparatus, force_model: KernelModel, rough: RoughContact, ini
     as :mod:`dynamics.simulation` expects; use :func:`dynamics.simulation.simulate`
     for a :class:`~dynamics.simulation.Trajectory`.
     """
-    run = RoughFullRun(apparatus, force_model, rough, limits, rtol, frame_terms)
+    run = RoughFullRun(apparatus, force_model, rough, limits, rtol, frame_terms, fluid_spin)
     y0 = full.initial_state(apparatus, initial.kappa, initial.phi, initial.kappa_dot, initial.phi_dot,
                             initial.omega_a, initial.omega_b)  # as dynamics.contact.full
     if run.varies:

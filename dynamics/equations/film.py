@@ -107,14 +107,14 @@ def void_scale(apparatus_or_annulus, n: int) -> float:
 
 
 def run_args(apparatus: Apparatus, film: TransportedFilm, *, gap_floor: float, max_reynolds: float = math.inf,
-             max_turns: float = math.inf, frame_terms: str = "paper") -> tuple:
+             max_turns: float = math.inf, frame_terms: str = "paper", fluid_spin: str = "none") -> tuple:
     """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`dynamics.equations.full.events`.
 
     (parameters, film data, typical scales, event parameters); the parameters and
     the events are the full model's (:func:`dynamics.equations.full.run_args`).
     """
     base = full.run_args(apparatus, kernel_model("closed-form"), gap_floor=gap_floor, max_reynolds=max_reynolds,
-                         max_turns=max_turns, frame_terms=frame_terms)
+                         max_turns=max_turns, frame_terms=frame_terms, fluid_spin=fluid_spin)
     floor = void_scale(apparatus, film.n)
     typical = np.concatenate((base[2], np.full(film.n + 1, floor)))
     return (base[0], film.kernel_data(apparatus.a, apparatus.length), typical, base[3])
@@ -139,7 +139,7 @@ def film_run(run: Recorder, initial: Initial, film: TransportedFilm) -> Trajecto
     """
     apparatus, limits = run.system, run.limits
     args = run_args(apparatus, film, gap_floor=limits.gap_floor, max_reynolds=limits.reynolds,
-                    max_turns=limits.max_turns, frame_terms=run.frame_terms)
+                    max_turns=limits.max_turns, frame_terms=run.frame_terms, fluid_spin=run.fluid_spin)
     stops = int(limits.stops)
     result = integrate(rhs, jacobian, (0.0, run.t_end), initial_state(apparatus, initial, film), args=args,
                        method=run.method, rtol=run.rtol, atol=run.rtol * args[2], events=full.events,

@@ -73,6 +73,7 @@ __all__ = [
     "CARTESIAN_BELOW",
     "CARTESIAN_EVENT_NAMES",
     "EVENT_NAMES",
+    "FLUID_SPIN",
     "FRAME_TERMS",
     "FreeFull",
     "POLAR_ABOVE",
@@ -104,23 +105,31 @@ POLAR_STATE_NAMES = ("u_x", "u_z", "q_r", "q_t", "omega_a", "omega_b", "x_b")
 POLAR_ABOVE, CARTESIAN_BELOW = 2.0, 1.0
 
 # indices into the parameter array built by params_array
-_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME = range(13)
+_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME, _SPIN = range(14)
 
 #: How the equations treat the fluid's inertia in the frame of the line of centres: "paper" is
 #: (2.1)-(2.2) as printed, m_eff on every term of r''; "quasi-steady" carries m'_a instead of
 #: m_eff on the centripetal and Coriolis terms while the fluid turns with the line of centres
 #: (:func:`frame_force`; its effect on trajectories: docs/inertia/inertia.md).
 FRAME_TERMS = ("paper", "quasi-steady")
+#: The fluid's own angular momentum in (2.4): "none" drops it, as the paper writes (2.4); "couette" adds that of
+#: the concentric Couette flow between the walls, m_f (a^2 Omega_a + b^2 Omega_b)/2, which a fluid turning with
+#: the cylinders carries (against the coupled Navier-Stokes runs: docs/stokes_limit.md).
+FLUID_SPIN = ("none", "couette")
 
 
-def params_array(apparatus, frame_terms: str = "paper") -> np.ndarray:
+def params_array(apparatus, frame_terms: str = "paper", fluid_spin: str = "none") -> np.ndarray:
     """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
     if frame_terms not in FRAME_TERMS:
         msg = f"frame_terms must be one of {', '.join(FRAME_TERMS)}, got {frame_terms!r}"
         raise ValueError(msg)
+    if fluid_spin not in FLUID_SPIN:
+        msg = f"fluid_spin must be one of {', '.join(FLUID_SPIN)}, got {fluid_spin!r}"
+        raise ValueError(msg)
     ap = apparatus
     return np.array([ap.a, ap.b, ap.length, ap.mu, ap.m_eff, ap.m_a_reduced, ap.M, ap.m_b, ap.m_a,
-                     ap.g, math.sin(ap.alpha), math.cos(ap.alpha), float(frame_terms == "quasi-steady")])
+                     ap.g, math.sin(ap.alpha), math.cos(ap.alpha), float(frame_terms == "quasi-steady"),
+                     ap.m_f if fluid_spin == "couette" else 0.0])
 
 
 @jit(inline="always")
@@ -210,8 +219,9 @@ def force_response(p, eps, ex, ez, f_eps, f_chi, t_a):
     fx = f_eps * ex + f_chi * cx
     fz = f_eps * ez + f_chi * cz
     m_eff, m_r = p[_MEFF], p[_MRED]
-    inertia_b = (p[_MTOT] + p[_MB]) * b * b - (m_r * b) ** 2 / m_eff
-    omega_b_dot = (-t_a - eps * f_chi - (m_r * b / m_eff) * fx) / inertia_b
+    # with fluid_spin, (m_f/2)(a^2 Omega_a' + b^2 Omega_b') on the left of (2.4), Omega_a' from (2.3)
+    inertia_b = (p[_MTOT] + p[_MB] + 0.5 * p[_SPIN]) * b * b - (m_r * b) ** 2 / m_eff
+    omega_b_dot = (-t_a * (1.0 + p[_SPIN] / p[_MA]) - eps * f_chi - (m_r * b / m_eff) * fx) / inertia_b
     return (fx - m_r * b * omega_b_dot) / m_eff, fz / m_eff, t_a / (0.5 * p[_MA] * a * a), omega_b_dot
 
 
@@ -220,7 +230,7 @@ def gravity_response(p):
     """(x'', z'', Omega_a', Omega_b') due to gravity alone, from the same equations."""
     b, m_eff, m_r = p[_B], p[_MEFF], p[_MRED]
     gs, gc = p[_G] * p[_SIN], p[_G] * p[_COS]
-    inertia_b = (p[_MTOT] + p[_MB]) * b * b - (m_r * b) ** 2 / m_eff
+    inertia_b = (p[_MTOT] + p[_MB] + 0.5 * p[_SPIN]) * b * b - (m_r * b) ** 2 / m_eff
     omega_b_dot = (p[_MTOT] * gs * b - (m_r * b / m_eff) * m_r * gs) / inertia_b
     return (m_r * gs - m_r * b * omega_b_dot) / m_eff, -m_r * gc / m_eff, 0.0, omega_b_dot
 
@@ -471,20 +481,21 @@ def polar_events(t, y, args):
 
 def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
-             frame_terms: str = "paper") -> tuple:
+             frame_terms: str = "paper", fluid_spin: str = "none") -> tuple:
     """The ``args`` of ``rhs`` (:func:`model_functions`), ``jacobian`` and :func:`events` for a run.
 
     (parameters, force model data, typical scales, event parameters): the gap-floor
     event at 1 - kappa = ``gap_floor``, the Reynolds event at ``max_reynolds``, the
     runaway event after ``max_turns`` turns of the outer cylinder from ``x_b0`` (m),
-    the touch event at ``kappa_star`` (1: none); ``frame_terms`` (:data:`FRAME_TERMS`).
+    the touch event at ``kappa_star`` (1: none); ``frame_terms`` (:data:`FRAME_TERMS`) and ``fluid_spin``
+    (:data:`FLUID_SPIN`).
     """
     ap = apparatus
     u_star = math.inf if kappa_star >= 1.0 else kappa_star / math.sqrt((1.0 - kappa_star) * (1.0 + kappa_star))
     per_rate = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed: (dynamics.equations.full.reduced_reynolds)
     ev = np.array([math.log(gap_floor), max_reynolds, per_rate * ap.a, per_rate * ap.b,
                    2.0 * math.pi * ap.b * max_turns, x_b0, u_star])
-    return (params_array(ap, frame_terms), model_arguments(force_model), typical_scales(ap), ev)
+    return (params_array(ap, frame_terms, fluid_spin), model_arguments(force_model), typical_scales(ap), ev)
 
 
 def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b, *,

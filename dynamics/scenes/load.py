@@ -378,6 +378,8 @@ _NOT_NAVIER_STOKES = (
                                "'stokes-exact'"),
     ("frame_terms", "paper", "frame_terms closes the ODE models' fluid inertia, which the Navier-Stokes flow "
                              "carries itself: leave it 'paper'"),
+    ("fluid_spin", "none", "the fluid's spin is the full equations'; the Navier-Stokes flow carries it itself: leave "
+                           "it 'none'"),
     ("inertia", "none", "the first inertial correction is the ODE models'; the Navier-Stokes flow has all of the "
                         "fluid's inertia: leave it 'none'"),
     ("ends", "infinite", "the Navier-Stokes flow is plane, per unit length of an infinitely long annulus: leave it "

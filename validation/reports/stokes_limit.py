@@ -112,7 +112,8 @@ def markdown(result: dict) -> str:
               "device's, with it, that is "
               f"{100 * runaway['spin_share']:.1f}% for the aluminium cylinder and {100 * release['spin_share']:.1f}% "
               "for the steel one: the runaway, which rolls, is ahead by just that share. The release rocks, and "
-              "only part of its motion is rolling.",
+              "only part of its motion is rolling. The runs here are without it; `model.fluid_spin = \"couette\"` "
+              "adds the spin of the concentric Couette flow to (2.4).",
               f"* On top of that the release's error grows with St, to {100 * abs(last['models']['paper']['x_b_relative']):.1f}% "
               f"at St {last['stokes_number']:.2g} (Re* {last['max_reduced_reynolds']:.2g}): the unsteady and inertial "
               "flow the quasi-steady forces leave out. Over the runaway's St its error stays within "
