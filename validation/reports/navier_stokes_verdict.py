@@ -7,23 +7,22 @@ Run ``python -m validation.reports.navier_stokes_verdict`` to write ``docs/navie
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
-from ..checks import verdict
 from ..navier_stokes_verdict import (
     CLOSED,
     EXACT,
-    RUNAWAYS,
     FRAME_PAIR,
     MEASURES,
     RESULTS,
+    RUNAWAYS,
     checks_of,
     frame_verdict,
     ranking,
     reference_error,
 )
+from .stored import rewrite
 
 __all__ = ["figure", "markdown", "write_outputs"]
 
@@ -276,9 +275,4 @@ def write_outputs(result: dict) -> list[Path]:
 
 
 if __name__ == "__main__":
-    stored = json.loads(RESULTS.read_text())
-    for path in write_outputs(stored):
-        print(path)
-    failed = [c.name for c in checks_of(stored) if not verdict(c.kind, c.measured, c.reference, c.tolerance)]
-    if failed:
-        raise SystemExit(f"failed checks: {failed}")
+    rewrite(RESULTS, write_outputs, checks_of)

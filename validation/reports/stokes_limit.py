@@ -7,11 +7,10 @@ written by ``python -m validation.stokes_limit``); nothing is run again.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
-from ..checks import verdict
 from ..stokes_limit import FRAME_TERMS, RESULTS, checks_of
+from .stored import checks_table, rewrite
 
 __all__ = ["figure", "markdown", "write_outputs"]
 
@@ -133,11 +132,7 @@ def markdown(result: dict) -> str:
               "The estimate "
               "is that of the full equations with the exact forces over the horizons above; a cheaper force model "
               "adds its own error, and a longer run can accumulate more.", "",
-              "## Checks", "", "| check | measured | reference | tolerance | passed |", "|---|---|---|---|---|"]
-    for c in checks_of(result):
-        passed = verdict(c.kind, c.measured, c.reference, c.tolerance)
-        lines.append(f"| {c.name} | {c.measured:.3g} | {c.reference:.3g} | {c.tolerance:.3g} | "
-                     f"{'yes' if passed else 'no'} |")
+              "## Checks", "", *checks_table(checks_of(result))]
     return "\n".join(lines) + "\n"
 
 
@@ -149,9 +144,4 @@ def write_outputs(result: dict) -> list[Path]:
 
 
 if __name__ == "__main__":
-    stored = json.loads(RESULTS.read_text())
-    for path in write_outputs(stored):
-        print(path)
-    failed = [c.name for c in checks_of(stored) if not verdict(c.kind, c.measured, c.reference, c.tolerance)]
-    if failed:
-        raise SystemExit(f"failed checks: {failed}")
+    rewrite(RESULTS, write_outputs, checks_of)
