@@ -6,6 +6,7 @@
     files.py      files written whole or not at all
     folder.py     an output folder replaced as one set, never half-written
     engine/       the compiled Radau IIA integrator: dense output, events, resumable
+    packed.py     a model's several arrays as one args array, the type every model shares
     integrate.py  one call for the engine and scipy's integrators (cross-checks)
     hybrid.py     runs in phases (contact, changes of variables) on the integrator
 

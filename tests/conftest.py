@@ -33,6 +33,17 @@ def ctrl_c():
     signal.signal(signal.SIGINT, previous)
 
 
+def _sigint_as_on_a_terminal():
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+@pytest.fixture
+def terminal_child():
+    """``preexec_fn`` for a subprocess: Ctrl-C handled in the child, as from a terminal, even where the tests
+    run in the background (a shell starts background jobs with SIGINT ignored, and children inherit that)."""
+    return _sigint_as_on_a_terminal
+
+
 @pytest.fixture(scope="module")
 def quick_group(tmp_path_factory):
     """``quick_group(name)``: the quick form of the group of ``snail validate`` that ``validation.reports.<name>``

@@ -185,7 +185,7 @@ def test_jacobian_is_the_derivative_of_the_right_hand_side(polar, kappa):
     fun, jacobian = functions.rhs, functions.jacobian
     if polar:
         y, fun, jacobian = full.to_polar(apparatus, y), functions.polar_rhs, functions.polar_jacobian
-    steps = 1e-3 * np.maximum(np.abs(y), args[2])
+    steps = 1e-3 * np.maximum(np.abs(y), full.typical_scales(apparatus))
     reference = _richardson_columns(fun, y, args, steps)
     jac = jacobian(0.0, y, args)
     assert np.all(reference[:, 6] == 0.0) and np.all(jac[:, 6] == 0.0)

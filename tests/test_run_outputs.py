@@ -28,22 +28,16 @@ import pytest
 LONG = ["--t-end", "20000", "--set", "run.rtol=1e-10", "--set", "run.gap_floor=1e-10"]
 
 
-def _signals_as_on_a_terminal():
-    """In the child: Ctrl-C handled, as from a terminal, even where the tests run in the background
-    (a shell starts background jobs with SIGINT ignored, and children inherit that)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 class _Snail:
     """``snail run`` in a subprocess, its stderr on a pseudo-terminal read by a thread."""
 
-    def __init__(self, *args):
+    def __init__(self, *args, preexec_fn):
         master, slave = os.openpty()
         # a terminal of 160 columns: with none set the bar is drawn zero columns wide, without its numbers
         fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 160, 0, 0))
         self.proc = subprocess.Popen([sys.executable, "-m", "dynamics.app.cli", "run", *args],
                                      stdout=subprocess.PIPE, stderr=slave, text=True,
-                                     preexec_fn=_signals_as_on_a_terminal)
+                                     preexec_fn=preexec_fn)
         os.close(slave)
         self._master = master
         self._chunks = []
@@ -97,9 +91,9 @@ def _set(folder: Path) -> dict:
     return summary
 
 
-def test_a_second_run_into_the_same_folder_is_refused(tmp_path):
+def test_a_second_run_into_the_same_folder_is_refused(tmp_path, terminal_child):
     out = tmp_path / "out"
-    first = _Snail("-o", str(out), *LONG)
+    first = _Snail("-o", str(out), *LONG, preexec_fn=terminal_child)
     try:
         first.wait_for_integration()
         second = subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", "-o", str(out)],
@@ -118,13 +112,13 @@ def test_a_second_run_into_the_same_folder_is_refused(tmp_path):
     pytest.param([signal.SIGTERM], "SIGTERM", id="sigterm"),
     pytest.param([signal.SIGINT, signal.SIGINT], "SIGINT", id="ctrl-c twice"),
 ])
-def test_an_interrupted_run_leaves_one_complete_set(tmp_path, signals, by):
+def test_an_interrupted_run_leaves_one_complete_set(tmp_path, signals, by, terminal_child):
     out = tmp_path / "out"
     done = subprocess.run([sys.executable, "-m", "dynamics.app.cli", "run", "-o", str(out), "--t-end", "1"],
                           capture_output=True, text=True, timeout=300, check=False)
     assert done.returncode == 0, done.stderr
     assert _set(out)["status"] == "completed"
-    run = _Snail("-o", str(out), *LONG)
+    run = _Snail("-o", str(out), *LONG, preexec_fn=terminal_child)
     run.wait_for_integration()
     for sig in signals:
         run.proc.send_signal(sig)

@@ -199,7 +199,7 @@ def test_regime_map_pools_the_other_axes():
 
 
 @pytest.mark.parametrize("stage", ["starting 2 workers", "loading the batch runner"])
-def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage):
+def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage, terminal_child):
     """Ctrl-C while the cluster starts (dask cannot close a half-started one) and while the batch runner
     compiles (on a worker: numba cannot be stopped inside a compile): exit 130 within seconds, no traceback."""
     import signal
@@ -210,7 +210,8 @@ def test_ctrl_c_stops_a_sweep_at_each_stage_without_a_traceback(tmp_path, stage)
     examples = Path(__file__).resolve().parents[1] / "dynamics" / "app" / "sweeps" / "examples"
     proc = subprocess.Popen([sys.executable, "-m", "dynamics.app.cli", "sweep", str(examples / "slope_kappa.toml"),
                              "-o", str(tmp_path / "out"), "--workers", "2"],
-                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True,
+                            preexec_fn=terminal_child)
     try:
         for line in proc.stderr:
             if stage in line:

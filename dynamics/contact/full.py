@@ -91,6 +91,7 @@ from dynamics.equations.limits import Limits
 from lubrication.kernels import KernelModel
 from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
 from numerics.jit import specialise
+from numerics.packed import pack, part
 
 __all__ = [
     "LOCKED_EVENTS",
@@ -227,7 +228,7 @@ STEADY_RESIDUAL = 1e-9
 LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
 SLIDING_EVENTS = ("runaway", "lift", "stick")
 
-# args of the contact phases: (p, model, typical scales, numbers), the same types as the free phase's
+# args of the contact phases: the parts (p, model, typical scales, numbers), packed as the free phase's
 # (dynamics.equations.full.run_args), so that one compiled integrator serves both; the numbers are
 # the runaway's limit and origin of X_b, then kappa*, 1 - kappa*, locked, sigma and tan(psi_hat)
 _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)
@@ -235,7 +236,7 @@ _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)
 
 def _contact_rhs(t, y, args):
     """d/dt (chi, chi', Omega_a, Omega_b, X_b) in contact (SI); ``args`` from :meth:`FullContactRun.contact_args`."""
-    p, model, c = args[0], args[1], args[3]
+    p, model, c = part(args, full.PARAMETERS), part(args, full.MODEL), part(args, full.EVENTS)
     r = CONTACT_RATES(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)  # noqa: F821
     out = np.empty(5)
     out[0] = y[1]
@@ -248,7 +249,7 @@ def _contact_rhs(t, y, args):
 
 def _contact_jacobian(t, y, args):
     """d(contact_rhs)/dy by central differences (:func:`dynamics.equations.full.central_differences`)."""
-    return full.central_differences(CONTACT_RHS, t, y, args)  # noqa: F821
+    return full.central_differences(CONTACT_RHS, t, y, args, part(args, full.TYPICAL))  # noqa: F821
 
 
 def _contact_events(t, y, args):
@@ -257,7 +258,7 @@ def _contact_events(t, y, args):
     The runaway; lift-off as N falls through 0; locked, the friction bound
     |F| = tan(psi_hat) N on either side; sliding, the slip reaching 0.
     """
-    p, model, c = args[0], args[1], args[3]
+    p, model, c = part(args, full.PARAMETERS), part(args, full.MODEL), part(args, full.EVENTS)
     r = CONTACT_RATES(y, p, c[_KSTAR], c[_OMK_STAR], c[_LOCKED] > 0.0, c[_SIGMA], c[_MU_F], model)  # noqa: F821
     n_force, f_force = r[3], r[4]
     g = np.empty(4)
@@ -321,16 +322,16 @@ class FullContactRun:
         return self.functions.rates(np.asarray(y, float), self.p, self.contact.kappa_star,
                                     self.contact.one_minus_kappa_star, locked, sigma, self.tan_psi_hat, self.model)
 
-    def contact_args(self, locked: bool, sigma: float) -> tuple:
+    def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
         numbers = np.array([*self.runaway, self.contact.kappa_star, self.contact.one_minus_kappa_star,
                             float(locked), sigma, self.tan_psi_hat])
-        return (self.p, self.model, self.contact_typical, numbers)
+        return pack(self.p, self.model, self.contact_typical, numbers)
 
     def free(self, y) -> Phase:
         stops = int(self.limits.stops)
         f = self.free_functions
         return Phase(FREE, f.rhs, f.jacobian, full.events, self.free_args, np.asarray(y, float),
-                     full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * self.free_args[2])
+                     full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * part(self.free_args, full.TYPICAL))
 
     def locked(self, y) -> Phase:
         f = self.functions

@@ -183,6 +183,7 @@ from dynamics.equations.reduced import ReducedParams, initial_state
 from lubrication.geometry import check_finite, check_range
 from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
 from numerics.jit import jit
+from numerics.packed import pack, part
 
 __all__ = [
     "FREE_EVENTS",
@@ -209,9 +210,10 @@ FREE_EVENTS = ("runaway", "turn", "touch")
 SLIDING_EVENTS = ("runaway", "lift", "stick")
 LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
 
-# The args of every phase (phase_args): the groups of (2.11) (s, Upsilon, mu_), then
-(_TAN_PSI, _SIGMA, _XB_LIMIT, _XB0, _CLEARANCE0, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN,
- _COS_A, _SIN_A, _COS_B, _SIN_B) = range(3, 15)
+# The args of every phase (phase_args), packed (numerics.packed): the groups of (2.11) (s, Upsilon, mu_), then
+_TAN_PSI, _SIGMA, _XB_LIMIT, _XB0, _CLEARANCE0, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN = range(3, 11)
+# and the surfaces' coefficients as the parts after these numbers
+_COS_A, _SIN_A, _COS_B, _SIN_B = range(1, 5)
 
 # The components of contact_state
 _PHI_DOT, _OMEGA_A_DOT, _OMEGA_B_DOT, _C_E, _C_X, _KAPPA, _ONE_MINUS_KAPPA = range(7)
@@ -221,28 +223,28 @@ _LIMITS = Limits()
 
 
 def phase_args(params: ReducedParams, rough: RoughContact, sigma: float = 0.0, *, x_b_limit: float = math.inf,
-               x_b0: float = 0.0, clearance0: float = 0.0) -> tuple:
+               x_b0: float = 0.0, clearance0: float = 0.0) -> np.ndarray:
     """The ``args`` of every phase's compiled functions.
 
-    (s, Upsilon, mu_, tan(psi), sigma, x_b_limit, x_b0, clearance0, amplitude,
-    kappa*_mean, 1 - kappa*_mean, and the cosine and sine coefficients of the
-    inner and outer surface). ``sigma`` is the sliding phase's sgn(D);
+    Packed (:mod:`numerics.packed`): the numbers (s, Upsilon, mu_, tan(psi), sigma,
+    x_b_limit, x_b0, clearance0, amplitude, kappa*_mean, 1 - kappa*_mean), then the
+    cosine and sine coefficients of the inner and outer surface as parts. ``sigma`` is the sliding phase's sgn(D);
     the runaway fires when |X_b - x_b0| reaches ``x_b_limit`` (units of b);
     ``clearance0`` is subtracted from the free phase's clearance r - r*
     (module docstring: a free phase that starts on the constraint).
     """
     mean = rough.mean
-    return (*params.args, mean.tan_psi, float(sigma), float(x_b_limit), float(x_b0), float(clearance0),
-            float(rough.amplitude), mean.kappa_star, mean.one_minus_kappa_star,
-            rough.inner.cos_coefficients, rough.inner.sin_coefficients,
-            rough.outer.cos_coefficients, rough.outer.sin_coefficients)
+    numbers = [*params.args, mean.tan_psi, sigma, x_b_limit, x_b0, clearance0, rough.amplitude, mean.kappa_star,
+               mean.one_minus_kappa_star]
+    return pack(numbers, rough.inner.cos_coefficients, rough.inner.sin_coefficients,
+                rough.outer.cos_coefficients, rough.outer.sin_coefficients)
 
 
 @jit(inline="always")
 def _local(theta_a, theta_b, args):
     """(kappa*, 1 - kappa*, d kappa*/d theta_a, d kappa*/d theta_b) at the body angles (roughness field)."""
-    return _local_kernel(theta_a, theta_b, args[_COS_A], args[_SIN_A], args[_COS_B], args[_SIN_B],
-                         args[_AMPLITUDE], args[_KAPPA_MEAN], args[_GAP_MEAN])
+    return _local_kernel(theta_a, theta_b, part(args, _COS_A), part(args, _SIN_A), part(args, _COS_B),
+                         part(args, _SIN_B), args[_AMPLITUDE], args[_KAPPA_MEAN], args[_GAP_MEAN])
 
 
 @jit
@@ -473,7 +475,7 @@ class RoughContactRun:
         self.x_b_limit = 2.0 * math.pi * limits.max_turns
         self.x_b0 = x_b0
 
-    def args(self, sigma: float = 0.0, clearance0: float = 0.0) -> tuple:
+    def args(self, sigma: float = 0.0, clearance0: float = 0.0) -> np.ndarray:
         return phase_args(self.params, self.rough, sigma, x_b_limit=self.x_b_limit, x_b0=self.x_b0,
                           clearance0=clearance0)
 

@@ -153,6 +153,7 @@ from lubrication.geometry import check_range
 from lubrication.kernels import KernelModel
 from numerics.hybrid import MAX_SWITCHES, Phase
 from numerics.jit import jit, specialise
+from numerics.packed import pack, part, parts
 
 __all__ = [
     "COMPLIANT_EVENTS",
@@ -169,7 +170,7 @@ __all__ = [
 FREE_EVENTS = full.EVENT_NAMES
 COMPLIANT_EVENTS = full.EVENT_NAMES[:4]
 
-# args[3] of every phase: the first 7 numbers as dynamics.equations.full.run_args (free and compliant
+# part EVENTS of every phase's args: the first 7 numbers as dynamics.equations.full.run_args (free and compliant
 # phases) or dynamics.contact.full (contact phases), then this block.
 _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)  # the contact phases' first 7
 (_PASSIVE, _CLEARANCE0, _ALPHA, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN, _MU_KINETIC, _MU_STATIC, _V_STRIBECK,
@@ -218,7 +219,7 @@ def _seen(core, turned_a, p, c):
 
 def _free_rhs(t, y, args):
     """d/dt of a free state: the full model's rates, Theta_a' = Omega_a and S' (module docstring)."""
-    c = args[3]
+    c = part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     if off == 0:
         return RHS(t, y, args)  # noqa: F821
@@ -228,13 +229,13 @@ def _free_rhs(t, y, args):
     for i in range(7):
         out[off + i] = f[i]
     out[0] = core[4]
-    out[1] = _seen(core, y[0], args[0], c)
+    out[1] = _seen(core, y[0], part(args, full.PARAMETERS), c)
     return out
 
 
 def _free_jacobian(t, y, args):
     """The full model's Jacobian, Theta_a' = Omega_a, and no row for S (nothing depends on S)."""
-    c = args[3]
+    c = part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     if off == 0:
         return JAC(t, y, args)  # noqa: F821
@@ -251,12 +252,12 @@ def _free_jacobian(t, y, args):
 def free_events(t, y, args):
     """:data:`FREE_EVENTS`: the full model's validity limits, runaway and turn, and the touch
     |u| - u*(theta_a, theta_b) less the phase's starting clearance."""
-    p, c = args[0], args[3]
+    p, c = part(args, full.PARAMETERS), part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     core = _core(y, off)
     g = np.empty(5)
     big_u = math.hypot(core[0], core[1])
-    full._event_values(core, args, big_u, full.reduced_reynolds(core, args), g)
+    full._event_values(core, c, big_u, full.reduced_reynolds(core, p, c), g)
     turned = y[0] if off > 0 else 0.0
     phi = math.atan2(core[0], core[1]) + c[_ALPHA]
     ks, oms, _, _, _, _, _ = _field(phi - turned, phi - core[6] / p[_B], c)
@@ -330,7 +331,7 @@ def _contact_rates(y, p, c, locked, sigma, model):
 
 def _contact_rhs(t, y, args):
     """d/dt ([Theta_a,] chi, chi', Omega_a, Omega_b, X_b) in contact (SI)."""
-    p, model, c = args[0], args[1], args[3]
+    p, model, c = part(args, full.PARAMETERS), part(args, full.MODEL), part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     r = RATES(y, p, c, c[_LOCKED] > 0.0, c[_SIGMA], model)  # noqa: F821
     out = np.empty(y.size)
@@ -346,7 +347,7 @@ def _contact_rhs(t, y, args):
 
 def _contact_jacobian(t, y, args):
     """d(contact rhs)/dy by central differences (:func:`dynamics.equations.full.central_differences`)."""
-    return full.central_differences(CONTACT_RHS, t, y, args)  # noqa: F821
+    return full.central_differences(CONTACT_RHS, t, y, args, part(args, full.TYPICAL))  # noqa: F821
 
 
 def _contact_events(t, y, args):
@@ -355,7 +356,7 @@ def _contact_events(t, y, args):
     The runaway; lift-off as N falls through 0; locked, the static bound
     |F| = mu_s N on either side; sliding, the slip reaching 0.
     """
-    p, model, c = args[0], args[1], args[3]
+    p, model, c = part(args, full.PARAMETERS), part(args, full.MODEL), part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     r = RATES(y, p, c, c[_LOCKED] > 0.0, c[_SIGMA], model)  # noqa: F821
     n_force, f_force = r[3], r[4]
@@ -409,7 +410,7 @@ def _compliant_force(core, turned_a, p, c):
 
 def _compliant_rhs(t, y, args):
     """d/dt of a compliant state: the free full model plus the contact force, Theta_a' = Omega_a and S'."""
-    p, c = args[0], args[3]
+    p, c = part(args, full.PARAMETERS), part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     core = _core(y, off)
     turned = y[0] if off > 0 else 0.0
@@ -430,25 +431,25 @@ def _compliant_rhs(t, y, args):
 
 def _compliant_jacobian(t, y, args):
     """d(compliant rhs)/dy by central differences; X_b is passive on uniform surfaces."""
-    passive = 1 if int(args[3][_PASSIVE]) == 0 else 0
-    return full.central_differences(COMPLIANT_RHS, t, y, args, passive)  # noqa: F821
+    passive = 1 if int(part(args, full.EVENTS)[_PASSIVE]) == 0 else 0
+    return full.central_differences(COMPLIANT_RHS, t, y, args, part(args, full.TYPICAL), passive)  # noqa: F821
 
 
 @jit
 def compliant_events(t, y, args):
     """:data:`COMPLIANT_EVENTS`: the full model's validity limits, runaway and turn."""
-    off = int(args[3][_PASSIVE])
-    core = _core(y, off)
+    p, c = part(args, full.PARAMETERS), part(args, full.EVENTS)
+    core = _core(y, int(c[_PASSIVE]))
     g = np.empty(5)
     _ = t
-    full._event_values(core, args, math.hypot(core[0], core[1]), full.reduced_reynolds(core, args), g)
+    full._event_values(core, c, math.hypot(core[0], core[1]), full.reduced_reynolds(core, p, c), g)
     return g[:4].copy()
 
 
 @jit
 def compliant_table(y, args):
     """The compliant force along states ``y`` (shape (n, k)): rows N, F, P, c_d, d', slip, d, kappa*, 1 - kappa*."""
-    p, c = args[0], args[3]
+    p, c = part(args, full.PARAMETERS), part(args, full.EVENTS)
     off = int(c[_PASSIVE])
     n, k = y.shape
     out = np.empty((9, k))
@@ -574,28 +575,28 @@ class RoughFullRun:
                                inner.cos_coefficients, inner.sin_coefficients,
                                outer.cos_coefficients, outer.sin_coefficients))
 
-    def free_args_for(self, clearance0: float = 0.0) -> tuple:
-        p, model, typical, ev = self.free_args
-        return (p, model, typical, np.concatenate((ev, self._block(self.passive_free, clearance0))))
+    def free_args_for(self, clearance0: float = 0.0) -> np.ndarray:
+        p, model, typical, ev = parts(self.free_args)
+        return pack(p, model, typical, np.concatenate((ev, self._block(self.passive_free, clearance0))))
 
-    def contact_args(self, locked: bool, sigma: float) -> tuple:
+    def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
         numbers = np.array([*self.runaway, self.mean.kappa_star, self.mean.one_minus_kappa_star, float(locked), sigma,
                             self.mu_k])
         typical = (np.concatenate(([1.0], self.contact_typical)) if self.varies else self.contact_typical)
-        return (self.p, self.model, typical, np.concatenate((numbers, self._block(self.passive_contact))))
+        return pack(self.p, self.model, typical, np.concatenate((numbers, self._block(self.passive_contact))))
 
-    def compliant_args(self) -> tuple:
-        typical = self.free_args[2]
+    def compliant_args(self) -> np.ndarray:
+        typical = part(self.free_args, full.TYPICAL)
         if self.varies:
             typical = np.concatenate(([1.0, 1.0], typical))
-        ev = self.free_args[3].copy()
+        ev = part(self.free_args, full.EVENTS).copy()
         ev[6] = math.inf  # no touch
-        return (self.p, self.model, typical, np.concatenate((ev, self._block(self.passive_free))))
+        return pack(self.p, self.model, typical, np.concatenate((ev, self._block(self.passive_free))))
 
     # rates and states in Python --------------------------------------------------------------------
     def rates(self, y, locked: bool, sigma: float) -> np.ndarray:
         """``_contact_rates`` of a contact state ``y``: chi'', Omega_a', Omega_b', N, F, eps*', kappa*, 1 - kappa*."""
-        return self.functions.rates(np.asarray(y, float), self.p, self.contact_args(locked, sigma)[3], locked,
+        return self.functions.rates(np.asarray(y, float), self.p, part(self.contact_args(locked, sigma), full.EVENTS), locked,
                                     sigma, self.model)
 
     def _angles(self, chi: float, turned_a: float, x_b: float):
@@ -633,7 +634,7 @@ class RoughFullRun:
         if on_constraint and self.varies:
             args = self.free_args_for(float(free_events(0.0, y, args)[4]))
         stops = int(self.limits.stops)
-        atol = self.rtol * self.free_args[2]
+        atol = self.rtol * part(self.free_args, full.TYPICAL)
         if self.varies:
             atol = np.concatenate(([self.rtol, self.rtol], atol))
         return Phase(FREE, self.functions.free_rhs, self.functions.free_jacobian, free_events, args, y,
@@ -658,7 +659,7 @@ class RoughFullRun:
     def compliant(self, y) -> Phase:
         f = self.functions
         stops = int(self.limits.stops)
-        atol = self.rtol * self.free_args[2]
+        atol = self.rtol * part(self.free_args, full.TYPICAL)
         if self.varies:
             atol = np.concatenate(([self.rtol, self.rtol], atol))
         return Phase(COMPLIANT, f.compliant_rhs, f.compliant_jacobian, compliant_events, self.compliant_args(),

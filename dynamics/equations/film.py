@@ -43,8 +43,9 @@ from lubrication.registry import kernel_model
 from numerics.engine import EVENT
 from numerics.integrate import integrate
 from numerics.jit import jit
+from numerics.packed import pack, part, parts
 
-__all__ = ["MassBalance", "Rocking", "initial_state", "jacobian", "mass_balance", "rhs", "rock", "rocking_jacobian",
+__all__ = ["MassBalance", "Rocking", "events", "initial_state", "jacobian", "mass_balance", "rhs", "rock", "rocking_jacobian",
            "film_run", "rocking_rhs", "run_args", "void_scale"]
 
 #: A void's finite-difference step and absolute-tolerance floor, as a fraction of a mean dual cell's area:
@@ -68,8 +69,8 @@ def _film(film, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b, void, reservoir
 
 @jit
 def rhs(t, y, args):
-    """dy/dt; ``args`` from :func:`run_args` (parameters, film data, typical scales, event parameters)."""
-    p, film = args[0], args[1]
+    """dy/dt; ``args`` from :func:`run_args` (the motion's packed numbers, the film's data)."""
+    p, film = part(args[0], full.PARAMETERS), args[1]
     a, b = p[_A], p[_B]
     delta = b - a
     kappa, omk, zeta, eps, big_u, ex, ez = full._geometry(y, delta)
@@ -97,7 +98,13 @@ def rhs(t, y, args):
 @jit
 def jacobian(t, y, args):
     """d(rhs)/dy by central differences (module docstring)."""
-    return central_differences(rhs, t, y, args)
+    return central_differences(rhs, t, y, args, part(args[0], full.TYPICAL))
+
+
+@jit
+def events(t, y, args):
+    """The full model's events (:func:`dynamics.equations.full.events`, on the first seven components)."""
+    return full.events(t, y, args[0])
 
 
 def void_scale(apparatus_or_annulus, n: int) -> float:
@@ -108,16 +115,17 @@ def void_scale(apparatus_or_annulus, n: int) -> float:
 
 def run_args(apparatus: Apparatus, film: TransportedFilm, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, frame_terms: str = "paper", fluid_spin: str = "none") -> tuple:
-    """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`dynamics.equations.full.events`.
+    """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events`.
 
-    (parameters, film data, typical scales, event parameters); the parameters and
-    the events are the full model's (:func:`dynamics.equations.full.run_args`).
+    (the motion's numbers, the film's data): the first packed as the full model's
+    (:func:`dynamics.equations.full.run_args`), with the film's typical scales appended to the motion's.
     """
     base = full.run_args(apparatus, kernel_model("closed-form"), gap_floor=gap_floor, max_reynolds=max_reynolds,
                          max_turns=max_turns, frame_terms=frame_terms, fluid_spin=fluid_spin)
     floor = void_scale(apparatus, film.n)
-    typical = np.concatenate((base[2], np.full(film.n + 1, floor)))
-    return (base[0], film.kernel_data(apparatus.a, apparatus.length), typical, base[3])
+    p, model, typical, ev = parts(base)
+    typical = np.concatenate((typical, np.full(film.n + 1, floor)))
+    return pack(p, model, typical, ev), film.kernel_data(apparatus.a, apparatus.length)
 
 
 def initial_state(apparatus: Apparatus, initial: Initial, film: TransportedFilm) -> np.ndarray:
@@ -142,7 +150,7 @@ def film_run(run: Recorder, initial: Initial, film: TransportedFilm) -> Trajecto
                     max_turns=limits.max_turns, frame_terms=run.frame_terms, fluid_spin=run.fluid_spin)
     stops = int(limits.stops)
     result = integrate(rhs, jacobian, (0.0, run.t_end), initial_state(apparatus, initial, film), args=args,
-                       method=run.method, rtol=run.rtol, atol=run.rtol * args[2], events=full.events,
+                       method=run.method, rtol=run.rtol, atol=run.rtol * part(args[0], full.TYPICAL), events=events,
                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=run.t_eval,
                        max_steps=run.max_steps, progress=run.progress)
     tau = apparatus.tau
@@ -251,7 +259,7 @@ def rocking_rhs(t, y, args):
 @jit
 def rocking_jacobian(t, y, args):
     """d(rocking_rhs)/dy by central differences."""
-    return central_differences(rocking_rhs, t, y, args)
+    return central_differences(rocking_rhs, t, y, args, args[2])
 
 
 @jit

@@ -68,6 +68,7 @@ import numpy as np
 from lubrication.kernels import KernelModel
 from numerics.hybrid import Phase
 from numerics.jit import jit, specialise
+from numerics.packed import pack, part
 
 __all__ = [
     "CARTESIAN_BELOW",
@@ -75,11 +76,15 @@ __all__ = [
     "EVENT_NAMES",
     "FLUID_SPIN",
     "FRAME_TERMS",
+    "EVENTS",
     "FreeFull",
+    "MODEL",
+    "PARAMETERS",
     "POLAR_ABOVE",
     "POLAR_EVENT_NAMES",
     "POLAR_STATE_NAMES",
     "STATE_NAMES",
+    "TYPICAL",
     "cartesian_events",
     "central_differences",
     "events",
@@ -96,6 +101,10 @@ __all__ = [
     "to_cartesian",
     "to_polar",
 ]
+
+#: The parts of a run's ``args`` (:func:`run_args`, :mod:`numerics.packed`): the parameters
+#: (:func:`params_array`), the force model's data, the typical scales, the event parameters.
+PARAMETERS, MODEL, TYPICAL, EVENTS = range(4)
 
 STATE_NAMES = ("u_x", "u_z", "v_x", "v_z", "omega_a", "omega_b", "x_b")
 #: The state near contact (``polar_rhs`` (:func:`model_functions`)): the velocity in the frame of the line of centres.
@@ -253,7 +262,7 @@ def _accelerations(forces, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, 
 # are bound, and the copies compiled, by _compiled below (model_functions).
 def _rhs(t, y, args):
     """dy/dt of the full model; ``args`` from :func:`run_args` (the parameters, then the force model's data)."""
-    p, model = args[0], args[1]
+    p, model = part(args, PARAMETERS), part(args, MODEL)
     delta = p[_B] - p[_A]
     kappa, omk, zeta, eps, big_u, ex, ez = _geometry(y, delta)
     vx, vz, omega_a, omega_b = y[2], y[3], y[4], y[5]
@@ -283,7 +292,7 @@ def _polar_geometry(y):
 
 def _polar_rhs(t, y, args):
     """dy/dt of the full model near contact, state :data:`POLAR_STATE_NAMES` (module docstring)."""
-    p, model = args[0], args[1]
+    p, model = part(args, PARAMETERS), part(args, MODEL)
     delta = p[_B] - p[_A]
     big_u, s2, s, kappa, omk, ex, ez = _polar_geometry(y)
     cx, cz = ez, -ex  # e_chi
@@ -327,7 +336,7 @@ def to_cartesian(apparatus, y: np.ndarray) -> np.ndarray:
 
 
 @jit(inline="always")
-def central_differences(fun, t, y, args, passive=0):
+def central_differences(fun, t, y, args, typical, passive=0):
     """d(fun)/dy by central differences, steps eps^(1/3) max(|y_j|, typical_j).
 
     Central differences carry an O(h^2) truncation and O(eps/h) rounding error,
@@ -336,7 +345,6 @@ def central_differences(fun, t, y, args, passive=0):
     enter no derivative (as X_b, which only records the distance rolled): their
     columns are zero and cost no evaluation.
     """
-    typical = args[2]
     n = y.size
     jac = np.zeros((n, n))
     yp = y.copy()
@@ -354,12 +362,12 @@ def central_differences(fun, t, y, args, passive=0):
 
 def _jacobian(t, y, args):
     """d(rhs)/dy by central differences (``central_differences``); X_b is passive."""
-    return central_differences(RHS, t, y, args, 1)  # noqa: F821
+    return central_differences(RHS, t, y, args, part(args, TYPICAL), 1)  # noqa: F821
 
 
 def _polar_jacobian(t, y, args):
     """d(polar_rhs)/dy by central differences (``central_differences``); X_b is passive."""
-    return central_differences(POLAR_RHS, t, y, args, 1)  # noqa: F821
+    return central_differences(POLAR_RHS, t, y, args, part(args, TYPICAL), 1)  # noqa: F821
 
 
 #: The full model's compiled right-hand sides and Jacobians, for one force kernel.
@@ -395,12 +403,12 @@ def model_functions(model: KernelModel) -> ModelFunctions:
 #: keeps chi continuous between output rows), and the touch of rough walls (kappa = kappa*).
 EVENT_NAMES = ("gap_floor", "reynolds", "runaway", "turn", "touch")
 
-# entries of the events' parameter array (args[3])
+# entries of the events' parameter array (part EVENTS of args)
 _LOG_FLOOR, _MAX_RE, _RE_A, _RE_B, _XB_LIMIT, _XB0, _U_STAR = range(7)
 
 
 @jit(inline="always")
-def _reynolds(kappa, chi_dot, omega_a, omega_b, args):
+def _reynolds(kappa, chi_dot, omega_a, omega_b, ev):
     """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi'.
 
     The Reynolds number of the flow relative to the line of centres, which
@@ -409,13 +417,12 @@ def _reynolds(kappa, chi_dot, omega_a, omega_b, args):
     of centres is undefined (kappa -> 0) chi' is not, and Re* is faded out over
     kappa ~ 1e-3.
     """
-    ev = args[3]
     fade = kappa * kappa / (kappa * kappa + 1e-6)
     return fade * max(abs(omega_a - chi_dot) * ev[_RE_A], abs(omega_b - chi_dot) * ev[_RE_B])
 
 
 @jit(inline="always")
-def reduced_reynolds(y, args):
+def reduced_reynolds(y, p, ev):
     """Re* = max(|W_a| a, |W_b| b) delta^2 / (nu a), W = Omega - chi', of a state ``y`` of ``rhs`` (:func:`model_functions`).
 
     The Reynolds number of the flow relative to the line of centres, which
@@ -425,16 +432,14 @@ def reduced_reynolds(y, args):
     big_u = math.hypot(y[0], y[1])
     if big_u == 0.0:
         return 0.0
-    p = args[0]
     kappa = big_u / math.sqrt(1.0 + big_u * big_u)
     ex, ez = y[0] / big_u, y[1] / big_u
-    return _reynolds(kappa, (ez * y[2] - ex * y[3]) / (kappa * (p[_B] - p[_A])), y[4], y[5], args)
+    return _reynolds(kappa, (ez * y[2] - ex * y[3]) / (kappa * (p[_B] - p[_A])), y[4], y[5], ev)
 
 
 @jit(inline="always")
-def _event_values(y, args, big_u, re_star, g):
-    """The first five event values (:data:`EVENT_NAMES`) into ``g``."""
-    ev = args[3]
+def _event_values(y, ev, big_u, re_star, g):
+    """The first five event values (:data:`EVENT_NAMES`) into ``g``; ``ev`` the part EVENTS of ``args``."""
     one_plus = 1.0 + big_u * big_u
     kappa = big_u / math.sqrt(one_plus)
     omk = 1.0 / (one_plus * (1.0 + kappa))
@@ -448,8 +453,9 @@ def _event_values(y, args, big_u, re_star, g):
 @jit
 def events(t, y, args):
     """The event values of :data:`EVENT_NAMES`; each fires as it falls through (or rises to) 0."""
+    p, ev = part(args, PARAMETERS), part(args, EVENTS)
     g = np.empty(5)
-    _event_values(y, args, math.hypot(y[0], y[1]), reduced_reynolds(y, args), g)
+    _event_values(y, ev, math.hypot(y[0], y[1]), reduced_reynolds(y, p, ev), g)
     return g
 
 
@@ -461,9 +467,10 @@ POLAR_EVENT_NAMES = (*EVENT_NAMES, "to_cartesian")
 @jit
 def cartesian_events(t, y, args):
     """:func:`events` and |u| - POLAR_ABOVE (rising through 0: the run goes on in ``polar_rhs`` (:func:`model_functions`))."""
+    p, ev = part(args, PARAMETERS), part(args, EVENTS)
     g = np.empty(6)
     big_u = math.hypot(y[0], y[1])
-    _event_values(y, args, big_u, reduced_reynolds(y, args), g)
+    _event_values(y, ev, big_u, reduced_reynolds(y, p, ev), g)
     g[5] = big_u - POLAR_ABOVE
     return g
 
@@ -474,17 +481,19 @@ def polar_events(t, y, args):
     g = np.empty(6)
     big_u = math.hypot(y[0], y[1])
     kappa = big_u / math.sqrt(1.0 + big_u * big_u)
-    _event_values(y, args, big_u, _reynolds(kappa, y[3] / big_u, y[4], y[5], args), g)
+    ev = part(args, EVENTS)
+    _event_values(y, ev, big_u, _reynolds(kappa, y[3] / big_u, y[4], y[5], ev), g)
     g[5] = big_u - CARTESIAN_BELOW
     return g
 
 
 def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
-             frame_terms: str = "paper", fluid_spin: str = "none") -> tuple:
+             frame_terms: str = "paper", fluid_spin: str = "none") -> np.ndarray:
     """The ``args`` of ``rhs`` (:func:`model_functions`), ``jacobian`` and :func:`events` for a run.
 
-    (parameters, force model data, typical scales, event parameters): the gap-floor
+    Its parts (:func:`numerics.packed.part`) :data:`PARAMETERS`, :data:`MODEL` (the force model's data),
+    :data:`TYPICAL` (typical scales) and :data:`EVENTS` (event parameters): the gap-floor
     event at 1 - kappa = ``gap_floor``, the Reynolds event at ``max_reynolds``, the
     runaway event after ``max_turns`` turns of the outer cylinder from ``x_b0`` (m),
     the touch event at ``kappa_star`` (1: none); ``frame_terms`` (:data:`FRAME_TERMS`) and ``fluid_spin``
@@ -495,7 +504,7 @@ def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reyno
     per_rate = ap.delta**2 / (ap.nu * ap.a)  # Re* per unit wall speed: (dynamics.equations.full.reduced_reynolds)
     ev = np.array([math.log(gap_floor), max_reynolds, per_rate * ap.a, per_rate * ap.b,
                    2.0 * math.pi * ap.b * max_turns, x_b0, u_star])
-    return (params_array(ap, frame_terms, fluid_spin), model_arguments(force_model), typical_scales(ap), ev)
+    return pack(params_array(ap, frame_terms, fluid_spin), model_arguments(force_model), typical_scales(ap), ev)
 
 
 def initial_state(apparatus, kappa, phi, kappa_dot, phi_dot, omega_a, omega_b, *,
@@ -563,7 +572,7 @@ def polar_observables(apparatus, y: np.ndarray, phi0: float) -> dict[str, np.nda
 
 
 def model_arguments(force_model: KernelModel) -> np.ndarray:
-    """The force model's data as ``rhs`` (:func:`model_functions`) takes them (``args[1]``)."""
+    """The force model's data as ``rhs`` (:func:`model_functions`) takes them (part :data:`MODEL` of ``args``)."""
     return force_model.data
 
 
@@ -584,7 +593,7 @@ class FreeFull:
 
     def __init__(self, apparatus, args, functions: ModelFunctions, stops: int, rtol: float, polar: bool = True):
         self.ap, self.args, self.f, self.polar = apparatus, args, functions, polar
-        typical = args[2]
+        typical = part(args, TYPICAL)
         self.atol = rtol * typical
         # q_r and q_t are rates of |u|: 1/tau for the size of their absolute tolerance
         self.polar_atol = rtol * np.array([*typical[:2], 1.0 / apparatus.tau, 1.0 / apparatus.tau, *typical[4:]])

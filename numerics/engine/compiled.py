@@ -7,7 +7,9 @@ process: the whole loop compiled each time. Typed instead as a first-class funct
 functions are called through a pointer (an indirect call, timed in
 ``benchmarks/results/engine.md``), and one
 compiled driver, kept in numba's disk cache, serves every model whose ``args``
-have the same numba type. :func:`engine_for` builds (or loads) that driver for a
+have the same numba type (the project's models pack theirs into one float64 array,
+:mod:`numerics.packed`, but for the transported film, whose data hold integers).
+:func:`engine_for` builds (or loads) that driver for a
 type of ``args``: compiled for exactly that signature and closed to other
 specialisations, so that calls from Python always take it.
 
