@@ -165,7 +165,7 @@ snail_api_groups = [
     ("The integrator", [
         "numerics.integrate", "numerics.engine", "numerics.engine.ivp", "numerics.engine.driver",
         "numerics.engine.compiled", "numerics.engine.radau", "numerics.engine.roots", "numerics.engine.linalg",
-        "numerics.engine.state", "numerics.engine.borrow",
+        "numerics.engine.state", "numerics.engine.borrow", "numerics.packed",
     ]),
     ("Scenes", ["dynamics.scenes", "dynamics.scenes.schema", "dynamics.scenes.load", "numerics.units"]),
     ("The application: runs, files, sweeps, the command", [
