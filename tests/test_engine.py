@@ -803,11 +803,13 @@ print(json.dumps([after.alloc - before.alloc, after.free - before.free,
 
 def test_a_run_frees_what_it_allocates_and_nothing_more():
     """numba's allocation counts: every allocation of a run is freed once (a leak or a double free fails)."""
-    env = {**os.environ, "NUMBA_NRT_STATS": "1"}
+    here = Path(__file__).resolve().parent
+    # the project from this checkout, as in the tests, not an installed copy with a numba cache of its own
+    env = {**os.environ, "NUMBA_NRT_STATS": "1", "PYTHONPATH": str(here.parent)}
     # run beside this file, so that its functions come back under the name pytest gave them (numba's cache
     # keeps that name)
     done = subprocess.run([sys.executable, "-c", _FREES], env=env, capture_output=True, text=True, timeout=600,
-                          cwd=Path(__file__).resolve().parent, check=False)
+                          cwd=here, check=False)
     assert done.returncode == 0, done.stderr[-2000:]
     allocated, freed, meminfos, meminfos_freed = json.loads(done.stdout.splitlines()[-1])
     assert allocated > 1000 and freed == allocated
