@@ -62,7 +62,27 @@ def quick_group(tmp_path_factory):
     return run
 
 
+#: What a test file names when it runs the integrator (in process or through ``snail``), whose driver
+#: numba compiles once for the whole run; the documentation's build compiles it early on.
+_INTEGRATING = ("dynamics", "validation", "benchmarks", "numerics.engine", "numerics.integrate")
+
+
+def _file_rank(path, memo={}) -> int:  # noqa: B006 - one cache for the run
+    """0 the documentation's build, 1 files that never integrate, 2 the rest, 3 the sweeps."""
+    if path not in memo:
+        text = path.read_text()
+        memo[path] = (0 if path.name == "test_docs.py" else 3 if path.name.startswith("test_sweep")
+                      else 2 if any(word in text for word in _INTEGRATING) else 1)
+    return memo[path]
+
+
 def pytest_collection_modifyitems(config, items):
-    """The documentation's build first: the longest file of the run, it goes to one process at the start
-    while the other runs the rest, rather than last while the other waits."""
-    items.sort(key=lambda item: item.path.name != "test_docs.py")
+    """Files in an order that keeps both processes busy (pytest's options keep it: ``--no-loadscope-reorder``).
+
+    The documentation's build first, the longest file of the run: it goes to one process at the
+    start, rather than last while the other waits, and compiles the integrator and the sweeps'
+    batch loop, which the other process would otherwise wait for (one process compiles a kernel, the
+    others wait and load it). So the other process starts with the files that never integrate, and
+    the sweeps come last.
+    """
+    items.sort(key=lambda item: _file_rank(item.path))
