@@ -241,3 +241,20 @@ def test_every_shipped_sweep_parses_and_its_base_scene_is_valid():
     ns = load_sweep(examples / "navier_stokes_resolution.toml")
     assert len(list(ns.points())) == 6
     assert parse_scene(ns.base, ns.source).model.equations == "navier-stokes"
+
+
+def test_the_stored_sandpaper_ensemble_needs_a_steeper_slope_for_a_coarser_grade():
+    """docs/sweeps/README.md's reading of the stored sandpaper sweep: at the amplitude 0.05, the lowest slope at
+    which every realisation rolls (mean speed over the second half at least 0.1 mm/s) does not fall from one
+    grade to the next coarser, and the coarsest grade needs a steeper slope than the smooth cylinder."""
+    stored = Path(__file__).resolve().parents[1] / "docs" / "sweeps" / "sandpaper" / "sweep.csv"
+    cells: dict = {}
+    for row in csv.DictReader(stored.open()):
+        if float(row["contact.roughness_amplitude"]) == 0.05:
+            sigma, slope = float(row["contact.sigma"].split()[0]), float(row["incline.alpha"].split()[0])
+            rolls = row["status"] == "completed" and float(row["mean_speed_late"]) >= 1e-4
+            cells.setdefault(sigma, {}).setdefault(slope, []).append(rolls)
+    lowest = [min((slope for slope, rolls in by_slope.items() if all(rolls)), default=math.inf)
+              for _, by_slope in sorted(cells.items())]
+    assert len(lowest) == 6 and all(len(r) == 4 for by in cells.values() for r in by.values())
+    assert lowest == sorted(lowest) and lowest[-1] > lowest[0]
