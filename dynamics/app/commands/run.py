@@ -84,14 +84,17 @@ def _run_scene_drawing(args, figures) -> int:
         finally:
             if bar is not None:
                 bar.close()
-        if figures is not None:
-            figures.send(trajectory)  # drawn while the other outputs are written
-        for warning in caught:
-            if issubclass(warning.category, ValidityWarning):
-                print(f"snail run: warning: {warning.message}; see summary.json", file=sys.stderr)
-            else:
-                warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
-        with held_signals():  # a computed run is written whole: a signal meanwhile takes effect after
+        # a computed run is drawn, reported and written whole: a signal meanwhile (the second Ctrl-C of an
+        # interrupted run) takes effect after, rather than in whatever runs when it comes, a finalizer perhaps,
+        # where Python cannot raise it and prints it as an ignored exception
+        with held_signals():
+            if figures is not None:
+                figures.send(trajectory)  # drawn while the other outputs are written
+            for warning in caught:
+                if issubclass(warning.category, ValidityWarning):
+                    print(f"snail run: warning: {warning.message}; see summary.json", file=sys.stderr)
+                else:
+                    warnings.showwarning(warning.message, warning.category, warning.filename, warning.lineno)
             info = write_outputs(folder, trajectory, resolved_scene=resolved_toml(scene), scene=scene.source,
                                  plot=figures is not None, max_rows=scene.run.max_rows,
                                  draw=figures.png if figures is not None else None,
