@@ -6,7 +6,15 @@ import numba
 import numpy as np
 from numba import types
 
+from numerics.jit import jit
 from numerics.packed import pack, part, parts
+
+
+@jit
+def _sum_of_part(args, i):
+    """What compiled code reads of part ``i``: its sum and size."""
+    view = part(args, i)
+    return view.sum(), view.size
 
 
 def test_parts_come_back_as_views_of_what_was_packed(rng):
@@ -14,16 +22,17 @@ def test_parts_come_back_as_views_of_what_was_packed(rng):
     args = pack(*arrays)
     back = parts(args)
     assert len(back) == 4
-    for got, given in zip(back, arrays):
+    for i, (got, given) in enumerate(zip(back, arrays)):
         np.testing.assert_array_equal(got, np.ravel(given))
+        assert _sum_of_part(args, i) == (np.sum(given), np.size(given))  # the compiled reader agrees
     np.testing.assert_array_equal(args[:3], arrays[0])  # the first part from index 0
     back[3][0] = 8.0
-    assert part(args, 3)[0] == 8.0  # a view, not a copy
+    assert _sum_of_part(args, 3) == (8.0, 1)  # views, not copies
 
 
 def test_a_single_part_and_no_part():
     assert parts(pack()) == []
-    np.testing.assert_array_equal(part(pack([1.0, 2.0]), 0), [1.0, 2.0])
+    np.testing.assert_array_equal(parts(pack([1.0, 2.0]))[0], [1.0, 2.0])
 
 
 def test_every_model_hands_the_engine_one_type_of_args():

@@ -91,7 +91,7 @@ from dynamics.equations.limits import Limits
 from lubrication.kernels import KernelModel
 from numerics.hybrid import MAX_SWITCHES, Phase, run_phases
 from numerics.jit import specialise
-from numerics.packed import pack, part
+from numerics.packed import pack, part, parts
 
 __all__ = [
     "LOCKED_EVENTS",
@@ -331,7 +331,7 @@ class FullContactRun:
         stops = int(self.limits.stops)
         f = self.free_functions
         return Phase(FREE, f.rhs, f.jacobian, full.events, self.free_args, np.asarray(y, float),
-                     full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * part(self.free_args, full.TYPICAL))
+                     full.EVENT_NAMES, (stops, stops, 1, 0, 1), (-1, -1, -1, 0, 1), self.rtol * parts(self.free_args)[full.TYPICAL])
 
     def locked(self, y) -> Phase:
         f = self.functions

@@ -579,25 +579,29 @@ class RoughFullRun:
         p, model, typical, ev = parts(self.free_args)
         return pack(p, model, typical, np.concatenate((ev, self._block(self.passive_free, clearance0))))
 
-    def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
+    def _contact_numbers(self, locked: bool, sigma: float) -> np.ndarray:
+        """The part EVENTS of a contact phase's args (the rates of every output row read it too)."""
         numbers = np.array([*self.runaway, self.mean.kappa_star, self.mean.one_minus_kappa_star, float(locked), sigma,
                             self.mu_k])
+        return np.concatenate((numbers, self._block(self.passive_contact)))
+
+    def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
         typical = (np.concatenate(([1.0], self.contact_typical)) if self.varies else self.contact_typical)
-        return pack(self.p, self.model, typical, np.concatenate((numbers, self._block(self.passive_contact))))
+        return pack(self.p, self.model, typical, self._contact_numbers(locked, sigma))
 
     def compliant_args(self) -> np.ndarray:
-        typical = part(self.free_args, full.TYPICAL)
+        typical = parts(self.free_args)[full.TYPICAL]
         if self.varies:
             typical = np.concatenate(([1.0, 1.0], typical))
-        ev = part(self.free_args, full.EVENTS).copy()
+        ev = parts(self.free_args)[full.EVENTS].copy()
         ev[6] = math.inf  # no touch
         return pack(self.p, self.model, typical, np.concatenate((ev, self._block(self.passive_free))))
 
     # rates and states in Python --------------------------------------------------------------------
     def rates(self, y, locked: bool, sigma: float) -> np.ndarray:
         """``_contact_rates`` of a contact state ``y``: chi'', Omega_a', Omega_b', N, F, eps*', kappa*, 1 - kappa*."""
-        return self.functions.rates(np.asarray(y, float), self.p, part(self.contact_args(locked, sigma), full.EVENTS), locked,
-                                    sigma, self.model)
+        return self.functions.rates(np.asarray(y, float), self.p, self._contact_numbers(locked, sigma), locked, sigma,
+                                    self.model)
 
     def _angles(self, chi: float, turned_a: float, x_b: float):
         phi = chi + self.ap.alpha
@@ -634,7 +638,7 @@ class RoughFullRun:
         if on_constraint and self.varies:
             args = self.free_args_for(float(free_events(0.0, y, args)[4]))
         stops = int(self.limits.stops)
-        atol = self.rtol * part(self.free_args, full.TYPICAL)
+        atol = self.rtol * parts(self.free_args)[full.TYPICAL]
         if self.varies:
             atol = np.concatenate(([self.rtol, self.rtol], atol))
         return Phase(FREE, self.functions.free_rhs, self.functions.free_jacobian, free_events, args, y,
@@ -659,7 +663,7 @@ class RoughFullRun:
     def compliant(self, y) -> Phase:
         f = self.functions
         stops = int(self.limits.stops)
-        atol = self.rtol * part(self.free_args, full.TYPICAL)
+        atol = self.rtol * parts(self.free_args)[full.TYPICAL]
         if self.varies:
             atol = np.concatenate(([self.rtol, self.rtol], atol))
         return Phase(COMPLIANT, f.compliant_rhs, f.compliant_jacobian, compliant_events, self.compliant_args(),

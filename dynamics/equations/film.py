@@ -150,7 +150,7 @@ def film_run(run: Recorder, initial: Initial, film: TransportedFilm) -> Trajecto
                     max_turns=limits.max_turns, frame_terms=run.frame_terms, fluid_spin=run.fluid_spin)
     stops = int(limits.stops)
     result = integrate(rhs, jacobian, (0.0, run.t_end), initial_state(apparatus, initial, film), args=args,
-                       method=run.method, rtol=run.rtol, atol=run.rtol * part(args[0], full.TYPICAL), events=events,
+                       method=run.method, rtol=run.rtol, atol=run.rtol * parts(args[0])[full.TYPICAL], events=events,
                        terminal=(stops, stops, 1, 0, 0), direction=(-1, -1, -1, 0, 1), t_eval=run.t_eval,
                        max_steps=run.max_steps, progress=run.progress)
     tau = apparatus.tau

@@ -68,7 +68,7 @@ import numpy as np
 from lubrication.kernels import KernelModel
 from numerics.hybrid import Phase
 from numerics.jit import jit, specialise
-from numerics.packed import pack, part
+from numerics.packed import pack, part, parts
 
 __all__ = [
     "CARTESIAN_BELOW",
@@ -593,7 +593,7 @@ class FreeFull:
 
     def __init__(self, apparatus, args, functions: ModelFunctions, stops: int, rtol: float, polar: bool = True):
         self.ap, self.args, self.f, self.polar = apparatus, args, functions, polar
-        typical = part(args, TYPICAL)
+        typical = parts(args)[TYPICAL]
         self.atol = rtol * typical
         # q_r and q_t are rates of |u|: 1/tau for the size of their absolute tolerance
         self.polar_atol = rtol * np.array([*typical[:2], 1.0 / apparatus.tau, 1.0 / apparatus.tau, *typical[4:]])
