@@ -68,11 +68,11 @@ _INTEGRATING = ("dynamics", "validation", "benchmarks", "numerics.engine", "nume
 
 
 def _file_rank(path, memo={}) -> int:  # noqa: B006 - one cache for the run
-    """0 the documentation's build, 1 files that never integrate, 2 the rest, 3 the sweeps."""
+    """0 the documentation's build, 1 the sweeps, 2 files that never integrate, 3 the rest."""
     if path not in memo:
         text = path.read_text()
-        memo[path] = (0 if path.name == "test_docs.py" else 3 if path.name.startswith("test_sweep")
-                      else 2 if any(word in text for word in _INTEGRATING) else 1)
+        memo[path] = (0 if path.name == "test_docs.py" else 1 if path.name.startswith("test_sweep")
+                      else 3 if any(word in text for word in _INTEGRATING) else 2)
     return memo[path]
 
 
@@ -80,9 +80,10 @@ def pytest_collection_modifyitems(config, items):
     """Files in an order that keeps both processes busy (pytest's options keep it: ``--no-loadscope-reorder``).
 
     The documentation's build first, the longest file of the run: it goes to one process at the
-    start, rather than last while the other waits, and compiles the integrator and the sweeps'
-    batch loop, which the other process would otherwise wait for (one process compiles a kernel, the
-    others wait and load it). So the other process starts with the files that never integrate, and
-    the sweeps come last.
+    start, rather than last while the other waits. It compiles the integrator early on and would
+    compile the sweeps' batch loop last, on the run's longest path (one process compiles a kernel,
+    the others wait and load it). So the other process starts with the sweeps, which compile that
+    loop meanwhile, then takes the files that never integrate, while the build compiles the
+    integrator the rest need.
     """
     items.sort(key=lambda item: _file_rank(item.path))
