@@ -62,10 +62,9 @@ def quick_group(tmp_path_factory):
     return run
 
 
-#: What a test file names when it runs the integrator (in process or through ``snail``), whose driver numba
-#: compiles once for the whole run; the documentation's build compiles it early on. (The README's examples
-#: integrate too: early, they compile the default scene's kernels beside the build, which then loads them.)
-_INTEGRATING = ("dynamics", "validation", "benchmarks", "numerics.engine", "numerics.integrate")
+#: What a test file names when it runs the integrator (in process, through ``snail`` or the README's
+#: examples), whose driver numba compiles once for the whole run; the documentation's build compiles it early on.
+_INTEGRATING = ("dynamics", "validation", "benchmarks", "numerics.engine", "numerics.integrate", "README")
 
 
 def _file_rank(path, memo={}) -> int:  # noqa: B006 - one cache for the run
