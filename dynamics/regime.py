@@ -26,8 +26,6 @@ import math
 
 import numpy as np
 
-from numerics.jit import jit
-
 __all__ = ["REGIMES", "classify", "late_half"]
 
 REGIMES = ("runaway", "rocking", "sedimenting", "locked rolling", "sliding rolling", "steady rolling", "transient")
@@ -38,17 +36,6 @@ STEADY_SPREAD = 0.01
 #: Shortest run (in tau, the time scale of the sinking) that can show a steady state or sedimentation.
 SHORTEST_SETTLED = 2.0
 _ROLLING = {1.0: "sliding rolling", 2.0: "locked rolling"}  # by contact phase code
-
-
-@jit
-def _late_half(t, phi, gap, omega_b):
-    """:func:`late_half`, compiled: a sweep classifies thousands of runs of about a thousand rows."""
-    late = min(np.searchsorted(t, 0.5 * t[-1]), t.shape[0] - 1)
-    phi_late = phi[late:]
-    # reversals of phi: sign changes of its increments (a zero increment counts as a sign of its own)
-    swings = np.count_nonzero(np.diff(np.sign(np.diff(phi_late))) != 0) if phi_late.size > 2 else 0
-    return (late, (phi[-1] - phi[late]) / (2.0 * math.pi), swings, np.ptp(phi_late), np.ptp(gap[late:]),
-            np.ptp(omega_b[late:]))
 
 
 def late_half(t, phi, gap, omega_b) -> tuple[int, float, int, float, float, float]:
@@ -76,13 +63,17 @@ def late_half(t, phi, gap, omega_b) -> tuple[int, float, int, float, float, floa
     ValueError
         If the columns are empty or of different lengths.
     """
-    columns = [np.ascontiguousarray(x, dtype=float) for x in (t, phi, gap, omega_b)]
-    # (compiled code does not check its indices: a short or empty column would be read past its end)
+    columns = [np.asarray(x, dtype=float) for x in (t, phi, gap, omega_b)]
     if not 1 <= columns[0].size == columns[1].size == columns[2].size == columns[3].size:
         msg = f"late_half needs t, phi, gap and omega_b of one length, at least 1; got {[c.size for c in columns]}"
         raise ValueError(msg)
-    late, turns, swings, phi_spread, gap_spread, omega_b_spread = _late_half(*columns)
-    return int(late), float(turns), int(swings), float(phi_spread), float(gap_spread), float(omega_b_spread)
+    t, phi, gap, omega_b = columns
+    late = min(int(np.searchsorted(t, 0.5 * t[-1])), t.size - 1)
+    phi_late = phi[late:]
+    # reversals of phi: sign changes of its increments (a zero increment counts as a sign of its own)
+    swings = int(np.count_nonzero(np.diff(np.sign(np.diff(phi_late))))) if phi_late.size > 2 else 0
+    return (late, float((phi[-1] - phi[late]) / (2.0 * math.pi)), swings, float(np.ptp(phi_late)),
+            float(np.ptp(gap[late:])), float(np.ptp(omega_b[late:])))
 
 
 def classify(trajectory) -> tuple[str, dict]:
