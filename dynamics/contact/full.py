@@ -394,7 +394,9 @@ class FullContactRun:
                     "kappa_dot": obs["kappa_dot"] * tau, "phi_dot": obs["phi_dot"] * tau,
                     "omega_a": obs["omega_a"] * tau, "omega_b": obs["omega_b"] * tau, "x_b": obs["x_b"] / ap.b,
                     "c_eps": zeros, "c_chi": zeros}
-        forces = np.array([self.rates(y[:, i], phase.name == LOCKED, phase.sigma)[3:] for i in range(n)]).reshape(n, 2)
+        # rows as contiguous arrays, the layout every other call of the rates has: one compiled version
+        locked = phase.name == LOCKED
+        forces = np.array([self.rates(row, locked, phase.sigma)[3:] for row in np.array(y.T)]).reshape(n, 2)
         weight = ap.m_a_reduced * ap.g
         return {"kappa": np.full(n, self.contact.kappa_star),
                 "one_minus_kappa": np.full(n, self.contact.one_minus_kappa_star), "phi": y[0] + ap.alpha,

@@ -763,7 +763,9 @@ class RoughFullRun:
             return cols | self._angles_columns(obs["phi"], y[0] if off else 0.0, y[-1])
         off = self.passive_contact
         locked = phase.name == LOCKED
-        table = np.array([self.rates(y[:, i], locked, phase.sigma) for i in range(n)]).reshape(n, 8)
+        # rows as contiguous arrays, the layout every other call of the rates has: one compiled version
+        rates, numbers, rows = self.functions.rates, self._contact_numbers(locked, phase.sigma), np.array(y.T)
+        table = np.array([rates(row, self.p, numbers, locked, phase.sigma, self.model) for row in rows]).reshape(n, 8)
         phi = y[off] + ap.alpha
         return {"kappa": table[:, 6], "one_minus_kappa": table[:, 7], "phi": phi,
                 "kappa_dot": table[:, 5] / ap.delta * tau, "phi_dot": y[off + 1] * tau,
