@@ -53,8 +53,8 @@ __all__ = ["EQUATIONS", "MAX_ROWS", "MAX_STEPS", "NAVIER_STOKES_RTOL", "Initial"
 def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, *, equations: str | None = None,
              forces: KernelModel | str = "stokes-exact", contact=None, limits: Limits = Limits(),
              method: str = "radau", rtol: float | None = None, output_interval: float | None = None, t_eval=None,
-             max_steps: int = 2_000_000, progress=None, frame_terms: str = "paper", fluid_spin: str = "none",
-             navier_stokes=None) -> Trajectory:
+             max_steps: int = 2_000_000, progress=None, frame_terms: str = full.DEFAULT_FRAME_TERMS,
+             fluid_spin: str = "none", navier_stokes=None) -> Trajectory:
     """Integrate a model of the snail cylinder from ``initial`` over ``t_end``.
 
     Parameters
@@ -99,10 +99,11 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         Accepted steps after which the run stops unfinished, in [1, :data:`MAX_STEPS`].
     progress : callable, optional
         ``progress(t)`` is called now and then with the time reached.
-    frame_terms : {"paper", "quasi-steady"}
+    frame_terms : {"quasi-steady", "paper"}
         The full equations' treatment of the fluid turning with the line of
-        centres: (2.1)-(2.2) as printed, or with m'_a on the centripetal and
-        Coriolis terms (:func:`dynamics.equations.full.frame_force`).
+        centres: m'_a on the centripetal and Coriolis terms
+        (:func:`dynamics.equations.full.frame_force`; the closer to the coupled
+        Navier-Stokes runs, docs/navier_stokes.md), or (2.1)-(2.2) as printed.
     fluid_spin : {"none", "couette"}
         The fluid's own angular momentum in (2.4): dropped, as the paper
         writes it, or that of the concentric Couette flow,
@@ -187,8 +188,9 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     if frame_terms not in full.FRAME_TERMS:
         msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
         raise ValueError(msg)
-    if frame_terms != "paper" and equations == "reduced":
-        msg = "frame_terms applies to the full equations; the reduced equations (2.11) drop these O(delta/a) terms"
+    if frame_terms != full.DEFAULT_FRAME_TERMS and equations == "reduced":
+        msg = (f"frame_terms applies to the full equations; the reduced equations (2.11) drop these O(delta/a) terms: "
+               f"leave it at its default {full.DEFAULT_FRAME_TERMS!r}")
         raise ValueError(msg)
     if equations == "reduced" and (initial.kappa_dot != 0.0 or initial.phi_dot != 0.0):
         msg = ("initial.kappa_dot and initial.phi_dot must be 0 for the reduced equations, where (2.11a-b) "
@@ -295,8 +297,9 @@ def _check_navier_stokes(equations, options, contact, frame_terms, method):
         return None
     if contact is not None:
         raise ValueError("contact: the Navier-Stokes equations run without a contact model (smooth walls)")
-    if frame_terms != "paper":
-        raise ValueError("frame_terms closes the ODE models' fluid inertia; the Navier-Stokes equations have none")
+    if frame_terms != full.DEFAULT_FRAME_TERMS:
+        raise ValueError(f"frame_terms closes the ODE models' fluid inertia; the Navier-Stokes equations have none: "
+                         f"leave it at its default {full.DEFAULT_FRAME_TERMS!r}")
     if method != "radau":
         raise ValueError(f"method picks the ODE models' integrator, got {method!r}; the Navier-Stokes equations "
                          "step with their own IMEX BDF2 (lubrication.unsteady.timestepping)")

@@ -14,6 +14,7 @@ import numpy as np
 
 from dynamics.contact.laws import COMPLIANT
 from dynamics.contact.reduced import FREE, LOCKED, SLIDING
+from dynamics.equations import full
 from dynamics.equations.limits import (
     LIMIT_EVENTS,
     VALIDITY_EVENTS,
@@ -197,7 +198,7 @@ class Recorder:
     integrates, and hands its rows to :meth:`trajectory` or :meth:`Recorder.contact_trajectory`."""
 
     def __init__(self, system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress,
-                 frame_terms="paper", fluid_spin="none"):
+                 frame_terms=full.DEFAULT_FRAME_TERMS, fluid_spin="none"):
         self.system, self.dimensionless, self.t_end = system, dimensionless, t_end
         self.limits, self.method, self.rtol = limits, method, rtol
         self.max_steps, self.progress, self.frame_terms = max_steps, progress, frame_terms

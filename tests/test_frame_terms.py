@@ -25,7 +25,10 @@ The fluid force is read off the right-hand side with the Cartesian form of
 - m'_a b Omega_b' (1, 0), so F = (m_eff x'' + m'_a b Omega_b', m_eff z'') when alpha = 0.
 """
 
+import collections
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,6 +36,7 @@ import pytest
 from dynamics.apparatus import preset
 from dynamics.equations import full
 from lubrication.registry import kernel_model
+from validation.navier_stokes_verdict import FRAME_PAIR, frame_verdict
 
 from apparatus import STEEL
 
@@ -248,6 +252,24 @@ def test_frame_terms_are_refused_for_the_reduced_equations():
     from dynamics.equations.reduced import ReducedParams
 
     with pytest.raises(ValueError, match="frame_terms"):
-        simulate(STEEL, Initial(0.5), 1.0, equations="reduced", frame_terms="quasi-steady")
+        simulate(STEEL, Initial(0.5), 1.0, equations="reduced", frame_terms="paper")
     with pytest.raises(ValueError, match="frame_terms must be one of"):
         simulate(ReducedParams(0.2, 1.0, 2.0), Initial(0.5), 1.0, frame_terms="exact")
+
+
+def test_the_default_frame_terms_are_the_closure_the_navier_stokes_verdict_favours():
+    """The default is the closure the coupled Navier-Stokes runs favour (docs/navier_stokes/verdict.json):
+    closer in the gap on every runaway by more than the reference's own error, and closer in more of
+    the (case, measure) comparisons that the reference's error decides."""
+    verdict = json.loads((Path(__file__).resolve().parents[1] / "docs" / "navier_stokes" / "verdict.json").read_text())
+    default = f"exact, {full.DEFAULT_FRAME_TERMS}"
+    assert default in FRAME_PAIR
+    decided = collections.Counter()
+    for case in verdict["cases"]:
+        for measure in ("x_b_relative", "log10_gap_ratio", "max_phi_error"):
+            comparison = frame_verdict(case, measure)
+            decided[comparison["closer"]] += comparison["resolved"]
+            if case["ode_regime_over_10_s"] == "runaway" and measure == "log10_gap_ratio":
+                assert comparison["resolved"] and comparison["closer"] == default, case["title"]
+    other = next(label for label in FRAME_PAIR if label != default)
+    assert decided[default] > decided[other] > 0

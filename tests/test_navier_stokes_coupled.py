@@ -174,7 +174,7 @@ def test_regrid_carries_the_flow_exactly():
 
 @pytest.mark.parametrize(("kwargs", "words"), [
     ({"equations": "navier-stokes", "contact": object()}, "contact"),
-    ({"equations": "navier-stokes", "frame_terms": "quasi-steady"}, "frame_terms"),
+    ({"equations": "navier-stokes", "frame_terms": "paper"}, "frame_terms"),
     ({"equations": "full", "navier_stokes": NavierStokesOptions()}, "navier_stokes options"),
     ({"equations": "navier-stokes", "method": "BDF"}, "method picks the ODE models' integrator"),
 ])

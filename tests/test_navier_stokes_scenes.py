@@ -95,7 +95,7 @@ def test_the_progress_is_the_simulated_time():
 
 @pytest.mark.parametrize(("overrides", "named"), [
     (["model.forces=closed-form"], "model.forces"),
-    (["model.frame_terms=quasi-steady"], "model.frame_terms"),
+    (["model.frame_terms=paper"], "model.frame_terms"),
     (["model.inertia=first-order"], "model.inertia"),
     (["model.ends=open"], "model.ends"),
     (["contact.kappa_star=0.99"], "contact.kappa_star"),
@@ -117,7 +117,7 @@ def test_the_section_without_the_coupled_flow_is_refused():
 
 def test_a_refused_scene_exits_2_without_a_traceback_or_files(tmp_path, capsys):
     out = tmp_path / "never"
-    code = main(["run", "-o", str(out), "--model", "navier-stokes", "--set", "model.frame_terms=quasi-steady"])
+    code = main(["run", "-o", str(out), "--model", "navier-stokes", "--set", "model.frame_terms=paper"])
     _, err = capsys.readouterr()
     assert code == 2 and "model.frame_terms" in err and "Traceback" not in err
     assert not out.exists()

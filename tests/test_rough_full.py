@@ -40,6 +40,7 @@ from dynamics.contact.roughness import (
     _local_kernel,
     soft_floor,
 )
+from dynamics.equations import full
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.scenes import SceneError
@@ -297,7 +298,10 @@ def energy_budget(trajectory, rough: RoughContact, stiffness_over=None):
     validation.dynamics_checks.mechanical_energy, with r' from kappa' and phi' (no
     differencing); the fluid's dissipation from the force kernel (fluid_dissipation);
     the friction's -F s; the compliant contact's damping c_d d'^2 and elastic energy
-    W l e^(-d/l), all recomputed here from the columns and the surfaces. Each smooth
+    W l e^(-d/l), all recomputed here from the columns and the surfaces. The quasi-steady
+    frame terms (the run's ``frame_terms``) add the force full.frame_force to the fluid's,
+    which is not a gradient: its power, that of a fluid force with T_a = 0, is a source
+    of the budget. Each smooth
     phase is integrated by Simpson's rule on its steps, and has its own residual; the
     energy lost at each switch (an impact) is returned apart.
     """
@@ -314,6 +318,10 @@ def energy_budget(trajectory, rough: RoughContact, stiffness_over=None):
                                                        c["one_minus_kappa"][i], delta * kd[i], oa[i] - pd[i],
                                                        ob[i] - pd[i]), eps[i], delta * kd[i], pd[i], oa[i], ob[i])
                       for i in range(t.size)])
+    p = full.params_array(ap, trajectory.info["frame_terms"])
+    frame = np.array([full.frame_force(p, eps[i], delta * kd[i], pd[i], oa[i], ob[i]) for i in range(t.size)])
+    frame_power = -np.array([fluid_dissipation(*frame[i], 0.0, eps[i], delta * kd[i], pd[i], oa[i], ob[i])
+                             for i in range(t.size)])
     slip = eps * pd + a * oa - (a + eps) * ob
     friction = c["c_chi"] * ap.delta_over_a * WEIGHT * slip  # -F s, F = -c_chi (delta/a) W
     damping, elastic = np.zeros(t.size), np.zeros(t.size)
@@ -333,7 +341,7 @@ def energy_budget(trajectory, rough: RoughContact, stiffness_over=None):
     for start, stop in zip(cuts, cuts[1:]):
         if start > 0:
             losses.append((trajectory.rows[start - 1], energy[start - 1] - energy[start]))
-        here = si.simpson((fluid + friction + damping)[start:stop], x=t[start:stop])
+        here = si.simpson((fluid + friction + damping - frame_power)[start:stop], x=t[start:stop])
         residuals.append(energy[stop - 1] - energy[start] + here)
         dissipated += here
     return np.array(residuals), dissipated, losses

@@ -13,7 +13,7 @@ import warnings
 import pytest
 
 from dynamics import Initial, Limits, ValidityWarning, preset, simulate
-from dynamics.equations import limits
+from dynamics.equations import full, limits
 from dynamics.scenes import SceneError, load_scene
 from generators.stokes_error import DATA_FILE, stokes_error
 from validation import stokes_limit as study
@@ -102,7 +102,7 @@ def test_a_device_past_the_limit_is_refused_or_flagged_and_past_the_measured_ran
     assert any("the largest measured" in str(w.message) for w in caught)
     unsteady = free.info["inertia"]["unsteady"]
     assert unsteady["stokes_number"] == pytest.approx(stokes, rel=1e-12)
-    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], "paper", free.regime)
+    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], full.DEFAULT_FRAME_TERMS, free.regime)
 
 
 def test_scenes_take_the_limit_and_name_it_when_refused():

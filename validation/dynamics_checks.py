@@ -48,13 +48,14 @@ dissipation, minus the power of the fluid forces on both cylinders,
     D = -f_eps eps' + delta f_chi W_b - T_a (W_a - W_b) = (delta zeta / c) [(delta f_chi + T_a)^2 + T_a^2],
 
 is O(zeta Omega^4). The same centrifugal load closes the gap: (2.2) and (2.5)
-give d(1/zeta)/dt = (delta^3/3c) Omega^2 [m_eff - (m'_a b sin chi)^2 / I] (the
-second term is the d'Alembert force of (2.2)), so zeta ~ t^-3 while Omega ~ t:
+give d(1/zeta)/dt = (delta^3/3c) Omega^2 [m_c - (m'_a b sin chi)^2 / I], m_c the
+mass on the centripetal term: m_eff as (2.2) is printed, m'_a with the quasi-steady
+frame terms (the second term is the d'Alembert force of (2.2)), so zeta ~ t^-3 while Omega ~ t:
 D / (K Omega) tends to a constant, the fraction f of the work of gravity lost
 in the film,
 
-    f = (9 (m'_a b)^2 / m_eff) <sin^2(chi) (J^2 + I_a^2) I^(-7/2)>
-        / <I^(-1/2) (1 - (m'_a b sin chi)^2 / (m_eff I))>,   J = I_a + m_eff delta^2 + m'_a b delta cos(chi),
+    f = (9 (m'_a b)^2 / m_c) <sin^2(chi) (J^2 + I_a^2) I^(-7/2)>
+        / <I^(-1/2) (1 - (m'_a b sin chi)^2 / (m_c I))>,   J = I_a + m_eff delta^2 + m'_a b delta cos(chi),
 
 (time averages over a turn are chi-averages weighted by 1/Omega ~ sqrt(I)),
 independent of the slope and the viscosity. The model's asymptotic acceleration
@@ -351,7 +352,7 @@ def full_runaway(alpha_deg: float, t_end: float, start=Initial(0.5, 0.5)) -> dic
     reynolds = np.max(np.abs(c["omega_b"])) * apparatus.b * apparatus.delta / apparatus.nu
     return {"apparatus": apparatus, "run": run, "acceleration": float(acceleration),
             "lost_fraction": float((energy[i] - energy[-1]) / work), "reynolds": float(reynolds),
-            "estimates": runaway_estimates(apparatus), "alpha_deg": alpha_deg}
+            "estimates": runaway_estimates(apparatus, frame_terms=run.info["frame_terms"]), "alpha_deg": alpha_deg}
 
 
 def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
@@ -362,8 +363,9 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
                  est.model, 1e-3, "quadratic fit to X_b over the second half; corrections O(g/(delta Omega^2)) "
                  "to f, a fraction of f = 0.6%"),
         relative(f"{tag}: share of the work of gravity lost in the film, second half", steep["lost_fraction"],
-                 est.dissipated_fraction, 0.02, "f of the module docstring, approached from below as "
-                 "g/(delta Omega^2) -> 0: 1.3% short over 2.5-5 s at 30 deg (10% short at 12 deg)"),
+                 est.dissipated_fraction, 0.03, "f of the module docstring, approached from below as "
+                 "g/(delta Omega^2) -> 0: over 2.5-5 s at 30 deg 2.1% short with the quasi-steady frame terms, "
+                 "1.3% with the paper's (10% short at 12 deg)"),
         at_most(f"{tag}: stopped only by t_end", 0.0 if steep["run"].status == "completed" else 1.0, 0.0,
                 f"max_reynolds raised to {RUNAWAY_REYNOLDS:g} (reached {steep['reynolds']:.0f}): the check "
                 "measures what the model implies beyond its Stokes-flow validity"),
@@ -378,8 +380,9 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
                              ("observed 2 g sin(alpha)/3 (figure 6)", est.observed, "experiment")):
         checks.append(Finding(f"{tag}: runaway acceleration estimate, {name} (m/s^2)", value,
                               f"{why}; the model's is {a:.4g} m/s^2, {a / value - 1:+.1%}"))
-    checks.append(relative(f"{tag}: runaway acceleration against the co-rotating (1 - f) a_0", a, est.model, 0.005,
-                           "still approaching: g/(delta Omega^2) ~ 0.1 over the fit"))
+    checks.append(relative(f"{tag}: runaway acceleration against the co-rotating (1 - f) a_0", a, est.model, 0.007,
+                           "still approaching: g/(delta Omega^2) ~ 0.1 over the fit, 0.6% above with the quasi-steady "
+                           "frame terms (0.2% with the paper's); a_0 alone, f = 1.4%, would be 0.85% off"))
     return checks
 
 

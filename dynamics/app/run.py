@@ -8,6 +8,7 @@ from dynamics.app.auto import resolve_model
 from dynamics.contact.laws import Compliance, Stribeck
 from dynamics.contact.reduced import ContactParams
 from dynamics.contact.roughness import RoughContact, Spectrum
+from dynamics.equations import full
 from dynamics.scenes import NavierStokes, Scene, SceneError
 from dynamics.simulation import simulate
 from dynamics.trajectory import Trajectory
@@ -63,7 +64,7 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     forces = "closed-form"
     if model.equations == "full":
         forces = _force_model(scene)
-    elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != "paper"
+    elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != full.DEFAULT_FRAME_TERMS
                                            or model.inertia != "none" or model.fluid_spin != "none"):
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
                                   ("model.fluid_spin", model.fluid_spin != "none"), ("model.frame_terms", True)) if v)

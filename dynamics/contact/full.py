@@ -303,7 +303,7 @@ class FullContactRun:
     """What the phases of one full-model contact run share."""
 
     def __init__(self, apparatus, force_model: KernelModel, contact: ContactParams, limits: Limits, rtol: float,
-                 frame_terms: str = "paper", fluid_spin: str = "none"):
+                 frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none"):
         self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
         self.p = full.params_array(apparatus, frame_terms, fluid_spin)
         self.model = full.model_arguments(force_model)
@@ -408,7 +408,7 @@ class FullContactRun:
 def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams, initial, t_end: float, *,
                      limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
-                     frame_terms: str = "paper", fluid_spin: str = "none") -> dict:
+                     frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> dict:
     """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
 
     Returns the fields of :func:`numerics.hybrid.run_phases` with times in

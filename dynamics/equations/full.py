@@ -116,18 +116,20 @@ POLAR_ABOVE, CARTESIAN_BELOW = 2.0, 1.0
 # indices into the parameter array built by params_array
 _A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME, _SPIN = range(14)
 
-#: How the equations treat the fluid's inertia in the frame of the line of centres: "paper" is
-#: (2.1)-(2.2) as printed, m_eff on every term of r''; "quasi-steady" carries m'_a instead of
-#: m_eff on the centripetal and Coriolis terms while the fluid turns with the line of centres
-#: (:func:`frame_force`; its effect on trajectories: docs/inertia/inertia.md).
-FRAME_TERMS = ("paper", "quasi-steady")
+#: How the equations treat the fluid's inertia in the frame of the line of centres: "quasi-steady"
+#: carries m'_a instead of m_eff on the centripetal and Coriolis terms while the fluid turns with the
+#: line of centres (:func:`frame_force`); "paper" is (2.1)-(2.2) as printed, m_eff on every term of r''.
+#: Against the coupled Navier-Stokes runs the quasi-steady terms are the closer on the whole, by far on
+#: runaways (docs/navier_stokes.md, docs/stokes_limit.md): they are the default, :data:`DEFAULT_FRAME_TERMS`.
+FRAME_TERMS = ("quasi-steady", "paper")
+DEFAULT_FRAME_TERMS = "quasi-steady"
 #: The fluid's own angular momentum in (2.4): "none" drops it, as the paper writes (2.4); "couette" adds that of
 #: the concentric Couette flow between the walls, m_f (a^2 Omega_a + b^2 Omega_b)/2, which a fluid turning with
 #: the cylinders carries (against the coupled Navier-Stokes runs: docs/stokes_limit.md).
 FLUID_SPIN = ("none", "couette")
 
 
-def params_array(apparatus, frame_terms: str = "paper", fluid_spin: str = "none") -> np.ndarray:
+def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
     """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
     if frame_terms not in FRAME_TERMS:
         msg = f"frame_terms must be one of {', '.join(FRAME_TERMS)}, got {frame_terms!r}"
@@ -489,7 +491,7 @@ def polar_events(t, y, args):
 
 def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
-             frame_terms: str = "paper", fluid_spin: str = "none") -> np.ndarray:
+             frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
     """The ``args`` of ``rhs`` (:func:`model_functions`), ``jacobian`` and :func:`events` for a run.
 
     Its parts (:func:`numerics.packed.part`) :data:`PARAMETERS`, :data:`MODEL` (the force model's data),

@@ -20,6 +20,7 @@ from importlib import resources
 
 import numpy as np
 
+from dynamics.equations import full
 from dynamics.equations.full import frame_force
 from numerics.jit import jit
 from numerics.keys import check_fields, key
@@ -132,7 +133,8 @@ class Limits:
         return math.inf if self.max_stokes_number is None else self.max_stokes_number
 
 
-def unsteady_error(stokes_number: float, frame_terms: str = "paper", regime: str | None = None) -> dict:
+def unsteady_error(stokes_number: float, frame_terms: str = full.DEFAULT_FRAME_TERMS,
+                   regime: str | None = None) -> dict:
     """The measured relative error of x_b of the quasi-steady models at ``stokes_number``, and what it rests on.
 
     Measured for two starts, a rocking release and a runaway, with the full equations, the exact Stokes
@@ -277,7 +279,7 @@ def _frame_force_magnitudes(p, eps, eps_dot, chi_dot, omega_a, omega_b):
     return out
 
 
-def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_terms: str = "paper",
+def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_terms: str = full.DEFAULT_FRAME_TERMS,
                    regime: str | None = None) -> dict:
     """How far a run's quasi-steady Stokes forces can be trusted, from its SI columns.
 

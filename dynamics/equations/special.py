@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.special import ellipe
 
+from dynamics.equations import full
 from dynamics.equations.reduced import stretched_to_kappa
 from lubrication.geometry import check_finite, check_range
 
@@ -200,12 +201,16 @@ class RunawayEstimates(NamedTuple):
     model: float  # (1 - f) a_0
 
 
-def runaway_estimates(apparatus, samples: int = 4096) -> RunawayEstimates:
+def runaway_estimates(apparatus, samples: int = 4096,
+                      frame_terms: str = full.DEFAULT_FRAME_TERMS) -> RunawayEstimates:
     """The mean runaway accelerations of the full model for ``apparatus`` (:class:`RunawayEstimates`).
 
     Derived in ``validation.dynamics_checks``'s docstring: with the fluid's dissipation as a
     perturbation of rigid co-rotation, a_0 = M g sin(alpha) b^2/<sqrt(I)>^2 over the turn of the line
-    of centres, less the share f of the work of gravity lost in the film.
+    of centres, less the share f of the work of gravity lost in the film. The centrifugal load that
+    closes the gap, and so f, carries the centripetal mass of ``frame_terms``: m_eff as (2.2) is
+    printed ("paper"), m'_a with the quasi-steady frame terms (the fluid co-rotates, so their frame
+    rate is chi').
 
     ``samples`` equispaced points in chi evaluate the averages behind f, which
     are periodic and smooth, so the rule converges geometrically.
@@ -223,8 +228,12 @@ def runaway_estimates(apparatus, samples: int = 4096) -> RunawayEstimates:
     inertia = i_0 + swing * np.cos(chi)
     carried = i_a + ap.m_eff * delta**2 + lever * delta * np.cos(chi)  # J
     shear = np.mean(np.sin(chi) ** 2 * (carried**2 + i_a**2) * inertia**-3.5)
-    closing = np.mean(inertia**-0.5 * (1.0 - (lever * np.sin(chi)) ** 2 / (ap.m_eff * inertia)))
-    fraction = 9.0 * lever**2 / ap.m_eff * shear / closing
+    if frame_terms not in full.FRAME_TERMS:
+        msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
+        raise ValueError(msg)
+    centripetal = ap.m_eff if frame_terms == "paper" else ap.m_a_reduced
+    closing = np.mean(inertia**-0.5 * (1.0 - (lever * np.sin(chi)) ** 2 / (centripetal * inertia)))
+    fraction = 9.0 * lever**2 / centripetal * shear / closing
     return RunawayEstimates(
         paper=ap.runaway_acceleration,
         rigid=ap.M * g_sin * b**2 / (i_a + (ap.M + ap.m_b) * b**2),

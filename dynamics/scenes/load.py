@@ -65,6 +65,7 @@ from pathlib import Path
 from typing import Any
 
 from dynamics.apparatus import PRESETS, Apparatus
+from dynamics.equations import full
 from dynamics.scenes.schema import (
     ALTERNATIVES,
     SECTIONS,
@@ -376,8 +377,9 @@ def _cavitation(raw: Mapping[str, Any]) -> Cavitation | None:
 _NOT_NAVIER_STOKES = (
     ("forces", "stokes-exact", "the flow of the gap gives the forces itself: leave model.forces at its default "
                                "'stokes-exact'"),
-    ("frame_terms", "paper", "frame_terms closes the ODE models' fluid inertia, which the Navier-Stokes flow "
-                             "carries itself: leave it 'paper'"),
+    ("frame_terms", full.DEFAULT_FRAME_TERMS, "frame_terms closes the ODE models' fluid inertia, which the "
+                                             "Navier-Stokes flow carries itself: leave it "
+                                             f"{full.DEFAULT_FRAME_TERMS!r}"),
     ("fluid_spin", "none", "the fluid's spin is the full equations'; the Navier-Stokes flow carries it itself: leave "
                            "it 'none'"),
     ("inertia", "none", "the first inertial correction is the ODE models'; the Navier-Stokes flow has all of the "

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from dynamics.apparatus import DENSITY, PRESETS, Apparatus
 from dynamics.contact.laws import CONTACT_LAWS, FRICTION_LAWS, HEIGHTS
 from dynamics.contact.roughness import SPECTRA
-from dynamics.equations.full import FLUID_SPIN, FRAME_TERMS
+from dynamics.equations.full import DEFAULT_FRAME_TERMS, FLUID_SPIN, FRAME_TERMS
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
@@ -120,9 +120,10 @@ class Model:
                                  "into end regions at z = +-L/2 (finite-length factors on the linear models)",
                             choices=("infinite", "open"))
     inertia: str = _registered("none", registry.option_keys(compositions_only=True)["inertia"])
-    frame_terms: str = key("paper", help="full equations: 'paper' is (2.1)-(2.2) as printed; 'quasi-steady' "
-                                         "carries m'_a, not m_eff, on the centripetal and Coriolis terms, as a "
-                                         "fluid turning with the line of centres requires", choices=FRAME_TERMS)
+    frame_terms: str = key(DEFAULT_FRAME_TERMS, help="full equations: 'quasi-steady' carries m'_a, not m_eff, on "
+                                                     "the centripetal and Coriolis terms, as a fluid turning with the "
+                                                     "line of centres requires (the closer to the Navier-Stokes runs); "
+                                                     "'paper' is (2.1)-(2.2) as printed", choices=FRAME_TERMS)
     fluid_spin: str = key("none", help="full equations: 'none' is (2.4) as printed, which drops the fluid's own "
                                        "angular momentum; 'couette' adds that of the concentric Couette flow, "
                                        "m_f (a^2 Omega_a + b^2 Omega_b)/2 (docs/stokes_limit.md)", choices=FLUID_SPIN)

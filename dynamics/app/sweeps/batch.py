@@ -37,7 +37,7 @@ import numpy as np
 from dynamics.app.sweeps.compiled import integrate_points
 from dynamics.app.sweeps.point import classify_point, run_point
 from dynamics.app.sweeps.spec import point_key
-from dynamics.equations import reduced
+from dynamics.equations import full, reduced
 from dynamics.equations.limits import LIMIT_EVENTS
 from dynamics.scenes import parse_scene
 from numerics.engine import EVENT, REACHED_END, TERMINAL_EVENT
@@ -87,7 +87,8 @@ def problem(scene) -> Problem | None:
     """
     model, run, initial = scene.model, scene.run, scene.initial
     if (model.equations != "reduced" or model.forces == "auto" or model.ends != "infinite"
-            or model.frame_terms != "paper" or model.fluid_spin != "none" or scene.contact is not None or scene.cavitation is not None
+            or model.frame_terms != full.DEFAULT_FRAME_TERMS or model.fluid_spin != "none" or scene.contact is not None
+            or scene.cavitation is not None
             or run.output_interval is not None):
         return None
     limits = run.limits
