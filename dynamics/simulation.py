@@ -185,9 +185,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         msg = f"limits must be a Limits, got {type(limits).__name__}"
         raise TypeError(msg)
     _check_start(initial, limits, contact, equations, method)
-    if frame_terms not in full.FRAME_TERMS:
-        msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
-        raise ValueError(msg)
+    full.check_frame_terms(frame_terms)
     if frame_terms != full.DEFAULT_FRAME_TERMS and equations == "reduced":
         msg = (f"frame_terms applies to the full equations; the reduced equations (2.11) drop these O(delta/a) terms: "
                f"leave it at its default {full.DEFAULT_FRAME_TERMS!r}")

@@ -73,6 +73,7 @@ from numerics.packed import pack, part, parts
 __all__ = [
     "CARTESIAN_BELOW",
     "CARTESIAN_EVENT_NAMES",
+    "DEFAULT_FRAME_TERMS",
     "EVENT_NAMES",
     "FLUID_SPIN",
     "FRAME_TERMS",
@@ -87,6 +88,7 @@ __all__ = [
     "TYPICAL",
     "cartesian_events",
     "central_differences",
+    "check_frame_terms",
     "events",
     "force_response",
     "frame_force",
@@ -129,11 +131,17 @@ DEFAULT_FRAME_TERMS = "quasi-steady"
 FLUID_SPIN = ("none", "couette")
 
 
-def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
-    """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
+def check_frame_terms(frame_terms: str) -> str:
+    """``frame_terms`` if it is one of :data:`FRAME_TERMS`, else ValueError naming them."""
     if frame_terms not in FRAME_TERMS:
         msg = f"frame_terms must be one of {', '.join(FRAME_TERMS)}, got {frame_terms!r}"
         raise ValueError(msg)
+    return frame_terms
+
+
+def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
+    """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
+    check_frame_terms(frame_terms)
     if fluid_spin not in FLUID_SPIN:
         msg = f"fluid_spin must be one of {', '.join(FLUID_SPIN)}, got {fluid_spin!r}"
         raise ValueError(msg)

@@ -228,9 +228,7 @@ def runaway_estimates(apparatus, samples: int = 4096,
     inertia = i_0 + swing * np.cos(chi)
     carried = i_a + ap.m_eff * delta**2 + lever * delta * np.cos(chi)  # J
     shear = np.mean(np.sin(chi) ** 2 * (carried**2 + i_a**2) * inertia**-3.5)
-    if frame_terms not in full.FRAME_TERMS:
-        msg = f"frame_terms must be one of {', '.join(full.FRAME_TERMS)}, got {frame_terms!r}"
-        raise ValueError(msg)
+    full.check_frame_terms(frame_terms)
     centripetal = ap.m_eff if frame_terms == "paper" else ap.m_a_reduced
     closing = np.mean(inertia**-0.5 * (1.0 - (lever * np.sin(chi)) ** 2 / (centripetal * inertia)))
     fraction = 9.0 * lever**2 / centripetal * shear / closing
