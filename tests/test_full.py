@@ -146,22 +146,23 @@ def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
     assert _reduced_reynolds(apparatus, guarded.columns, -1) == pytest.approx(1.0, rel=1e-5)
 
 
-@pytest.mark.parametrize(("frame_terms", "omega_b"), [("paper", 0.2), ("quasi-steady", 0.3)])
-def test_rhs_is_regular_through_the_centre(frame_terms, omega_b):
+@pytest.mark.parametrize(("frame_terms", "omega_a", "omega_b"), [("paper", 0.3, 0.2), ("quasi-steady", 0.0, 0.0)])
+def test_rhs_is_regular_through_the_centre(frame_terms, omega_a, omega_b):
     """The right-hand side is continuous at eps = 0 for any direction of approach: (2.1)-(2.2) as
-    printed at any wall rates; with the quasi-steady frame terms where the walls turn together. Their
-    frame rate is chi' clipped to the wall rates (full.frame_force), and chi' = (e_chi . r')/eps runs
-    to +-infinity at the centre with the direction of approach: between walls turning at different
-    rates the Coriolis force there is that of the one or the other wall's rate."""
+    printed at any wall rates; with the quasi-steady frame terms where the walls stand still. Their
+    frame rate is chi' clipped to [min(0, Omega_a, Omega_b), max(0, Omega_a, Omega_b)] (full.frame_force),
+    and chi' = (e_chi . r')/eps runs to +-infinity at the centre with the direction of approach: with
+    turning walls the Coriolis force there is that of the one or the other end's rate
+    (tests/test_frame_terms.py)."""
     apparatus = STEEL
     model = kernel_model("closed-form")
     args = full.run_args(apparatus, model, gap_floor=1e-9, frame_terms=frame_terms)
     rhs = full.model_functions(model).rhs
     v = np.array([1e-4, -2e-4])
-    at_centre = rhs(0.0, np.array([0.0, 0.0, *v, 0.3, omega_b, 0.0]), args)
+    at_centre = rhs(0.0, np.array([0.0, 0.0, *v, omega_a, omega_b, 0.0]), args)
     for angle in np.linspace(0, 2 * math.pi, 7):
         tiny = 1e-9 * np.array([math.sin(angle), math.cos(angle)])
-        near = rhs(0.0, np.array([*tiny, *v, 0.3, omega_b, 0.0]), args)
+        near = rhs(0.0, np.array([*tiny, *v, omega_a, omega_b, 0.0]), args)
         np.testing.assert_allclose(near[2:], at_centre[2:], rtol=1e-6, atol=1e-9 * np.abs(at_centre).max())
 
 

@@ -175,26 +175,39 @@ def frame_force(p, eps, eps_dot, chi_dot, omega_a=math.nan, omega_b=math.nan):
     centripetal and Coriolis terms (lubrication.navier_stokes).
 
     The frame rate. The argument needs a frame in which the flow is steady.
-    The line of centres is that frame while the fluid turns with it. It stops
-    being one as A passes near B: chi' = (e_chi . r')/eps grows without bound
-    while the walls, and the fluid between them, turn at finite rates, and
-    the force above would grow like |r'|^2/eps. Every part of the fluid turns
-    at a rate between those of its walls (circular Couette flow), so the rate
-    used is chi' clipped to [min(Omega_a, Omega_b), max(Omega_a, Omega_b)].
-    This has no free constant, and it
+    The line of centres is that frame while its rate changes slowly: the
+    walls are fixed in shape there and turn at steady relative rates
+    Omega - chi'. What the flow's inertia adds beyond the frame force depends
+    on those relative rates only, and is the relative flow's correction
+    (:mod:`lubrication.inertia`, ``inertia = "first-order"``). The line of
+    centres stops being a steady frame as A passes near B: chi' =
+    (e_chi . r')/eps grows without bound while the walls, and the fluid
+    between them, turn at finite rates, and the force above would grow like
+    |r'|^2/eps. So the rate used is chi' clipped to the interval spanned by
+    0 and the wall rates, [min(0, Omega_a, Omega_b), max(0, Omega_a, Omega_b)]:
+    every part of the fluid turns at a rate between those of its walls
+    (circular Couette flow), and the lab frame, rate 0, is a steady frame
+    whenever the line of centres stands still. This has no free constant,
+    and it
 
-    * is chi' wherever chi' lies between the wall rates: the runaway and the
-      approach to contact, where Omega_a ~ Omega_b ~ chi';
-    * is exact when the fluid turns rigidly (Omega_a = Omega_b): at eps -> 0 it
-      tends to the Coriolis force 2 m''_a Omega J r' on a disc crossing a
-      rigidly turning fluid, finite where the chi' form diverges;
-    * elsewhere exceeds the chi' form by m''_a (1 + m''_a/m_f) (eps W^2, 2 W eps'),
-      W = Omega_nearer - chi' the relative rate of the wall nearer in rate to
-      chi'. Along e_eps that is at most (1 + m''_a/m_f) (delta/a) Re*/6 of the
-      thin-gap Stokes force (2.6) of that wall's rotation (0.14 Re* for the
-      apparatus): the order of the inertial error G Re* of the relative flow
-      (G up to 0.08 there, :mod:`lubrication.inertia`), which the quasi-steady
-      forces carry anyway.
+    * is chi' wherever chi' lies between 0 and a wall rate: the runaway and
+      the approach to contact, where Omega_a ~ Omega_b ~ chi', and steady
+      rolling, where chi' = 0 while the walls turn. There the steady
+      Navier-Stokes force is the Stokes force plus the relative flow's
+      first-order correction, with no frame force (tests/test_frame_terms.py);
+      a clip to the wall rates alone would add (m_eff - m'_a) eps Omega^2;
+    * at eps -> 0, with the fluid turning rigidly (Omega_a = Omega_b = Omega),
+      tends to the Coriolis force 2 m''_a Omega J r' on a disc crossing the
+      fluid in the sense of its rotation, finite where the chi' form diverges.
+      A disc crossing against it is given rate 0 and misses 2 m''_a Omega |r'|,
+      of the order of the next item;
+    * elsewhere (chi' outside the interval) exceeds the chi' form by
+      m''_a (1 + m''_a/m_f) (eps W^2, 2 W eps'), W = R - chi' with R the end
+      of the interval nearer to chi'. Where R is a wall's rate, along e_eps that is at
+      most (1 + m''_a/m_f) (delta/a) Re*/6 of the thin-gap Stokes force (2.6)
+      of that wall's rotation (0.14 Re* for the apparatus): the order of the
+      inertial error G Re* of the relative flow (G up to 0.08 there,
+      :mod:`lubrication.inertia`), which the quasi-steady forces carry anyway.
 
     ``omega_a``, ``omega_b`` omitted: the fluid is taken to turn with the line
     of centres (Omega = chi'), as in contact, where Omega_a ~ Omega_b ~ chi'.
@@ -204,7 +217,7 @@ def frame_force(p, eps, eps_dot, chi_dot, omega_a=math.nan, omega_b=math.nan):
         return 0.0, 0.0
     rate = chi_dot
     if not math.isnan(omega_a):
-        rate = min(max(chi_dot, min(omega_a, omega_b)), max(omega_a, omega_b))
+        rate = min(max(chi_dot, min(0.0, omega_a, omega_b)), max(0.0, omega_a, omega_b))
     extra = p[_MEFF] - p[_MRED]
     return extra * eps * rate * (rate - 2.0 * chi_dot), 2.0 * extra * rate * eps_dot
 
