@@ -38,6 +38,8 @@ another only where their errors differ by more than that.
 
 ``python -m validation.navier_stokes_verdict`` runs the study (26 minutes on
 one core of a shared 2-core machine) and stores every number in ``docs/navier_stokes/verdict.json``;
+with ``--models`` it keeps the stored checks of the references' own error and reruns the references (which
+must reproduce their stored series) and the ODE models, after a change to the models;
 ``python -m validation.reports.navier_stokes_verdict`` writes ``docs/navier_stokes.md``
 and the figures from it without running anything.
 """
@@ -189,15 +191,21 @@ def _ode(case: Case, settings: dict, t_eval: np.ndarray) -> dict:
             "wall_time_s": time.perf_counter() - start}
 
 
-def run_case(case: Case, log=print) -> dict:
-    """Every run of one case and its numbers (module docstring)."""
+def run_case(case: Case, log=print, reference_error: dict | None = None) -> dict:
+    """Every run of one case and its numbers (module docstring).
+
+    ``reference_error``: the stored checks of the reference's own error, kept instead of run again (the
+    models-only rerun, ``--models``); the reference itself is run again, and it must reproduce its stored
+    series (the coupled run is deterministic).
+    """
     ap = case.apparatus
     log(f"case ({case.label}) {case.title}: Navier-Stokes to {case.horizon:g} s")
     reference, info = _navier_stokes(case)
     t = reference["t"]
-    checks = {}
-    for name, options in (("tight_rtol", {"rtol": TIGHT_RTOL}), ("fine_n_r", {"n_r": FINE_N_R}),
-                          ("fine_n_theta", {"n_theta": 2 * info["n_theta"]})):
+    checks = reference_error or {}
+    for name, options in () if reference_error else (("tight_rtol", {"rtol": TIGHT_RTOL}),
+                                                      ("fine_n_r", {"n_r": FINE_N_R}),
+                                                      ("fine_n_theta", {"n_theta": 2 * info["n_theta"]})):
         log(f"case ({case.label}): reference again with {options}")
         again, again_info = _navier_stokes(case, **options)
         on_rows = {k: np.interp(t, again["t"], again[k]) for k in ("x_b", "one_minus_kappa", "phi")}
@@ -295,12 +303,28 @@ def checks_of(result: dict) -> list[Check]:
     return checks
 
 
-def compute(cases=CASES, log=print) -> dict:
-    """Run every case; the numbers :mod:`validation.reports.navier_stokes_verdict` reports."""
+def compute(cases=CASES, log=print, stored: dict | None = None) -> dict:
+    """Run every case; the numbers :mod:`validation.reports.navier_stokes_verdict` reports.
+
+    ``stored``: a previous result whose checks of the references' own error are kept (:func:`run_case`).
+    """
     start = time.perf_counter()
-    out = [run_case(case, log) for case in cases]
+    out = []
+    for case in cases:
+        if stored is None:
+            out.append(run_case(case, log))
+            continue
+        before = next(c for c in stored["cases"] if c["label"] == case.label)
+        out.append(run_case(case, log, before["reference_error"]))
+        series, again = before["navier_stokes"]["series"], out[-1]["navier_stokes"]["series"]
+        if series != again:
+            raise RuntimeError(f"case ({case.label}): the Navier-Stokes reference no longer reproduces its stored "
+                               "series; run the whole study again")
+    # the kept checks count at the wall time they took, so that the total is that of the whole study
+    kept = 0.0 if stored is None else sum(check["wall_time_s"] for case in out
+                                          for check in case["reference_error"].values())
     return {"cases": out, "models": list(MODELS), "ode_rtol": ODE_RTOL, "navier_stokes_rtol": NAVIER_STOKES_RTOL,
-            "tight_rtol": TIGHT_RTOL, "fine_n_r": FINE_N_R, "wall_time_s": time.perf_counter() - start}
+            "tight_rtol": TIGHT_RTOL, "fine_n_r": FINE_N_R, "wall_time_s": time.perf_counter() - start + kept}
 
 
 if __name__ == "__main__":
@@ -309,8 +333,11 @@ if __name__ == "__main__":
 
     from numerics.files import write_json
 
-    chosen = [c for c in CASES if len(sys.argv) < 2 or c.label in sys.argv[1]]
-    result = compute(chosen, log=lambda text: print(text, flush=True))
+    models_only = "--models" in sys.argv
+    args = [arg for arg in sys.argv[1:] if arg != "--models"]
+    chosen = [c for c in CASES if not args or c.label in args[0]]
+    stored = json.loads(RESULTS.read_text()) if models_only else None
+    result = compute(chosen, log=lambda text: print(text, flush=True), stored=stored)
     RESULTS.parent.mkdir(parents=True, exist_ok=True)
     result = json.loads(json.dumps(result, default=lambda x: x.item()))  # numpy scalars as plain numbers
-    write_json(RESULTS if len(chosen) == len(CASES) else RESULTS.with_name(f"verdict_{sys.argv[1]}.json"), result)
+    write_json(RESULTS if len(chosen) == len(CASES) else RESULTS.with_name(f"verdict_{args[0]}.json"), result)
