@@ -52,7 +52,7 @@ def figure(result: dict, path: str | Path) -> Path:
 
 def _points_table(family: dict) -> list[str]:
     lines = ["| nu (m^2/s) | St | tau (s) | horizon (s) | max Re* | X_b error, paper | X_b error, quasi-steady "
-             "| X_b error, paper, with the fluid's spin | reference's own error | NS wall (s) |",
+             "| X_b error, quasi-steady, with the Couette spin | reference's own error | NS wall (s) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for p in family["points"]:
         paper, quasi = (p["models"][frame]["x_b_relative"] for frame in FRAME_TERMS)
@@ -108,7 +108,7 @@ def markdown(result: dict) -> str:
               f"{low['max_reduced_reynolds']:.2g}, and the release's {100 * abs(first['models']['paper']['x_b_relative']):.1f}% "
               f"at Re* {first['max_reduced_reynolds']:.2g}. Equation (2.4), as the paper writes it, drops the fluid's "
               "own angular momentum about its centre of mass: a fluid turning with the cylinders has a moment of "
-              "inertia m_f (a^2 + b^2)/2 that no ODE model carries, and the Navier-Stokes run does. Over the "
+              "inertia m_f (a^2 + b^2)/2 that (2.4) as printed leaves out, and the Navier-Stokes run carries. Over the "
               "device's, with it, that is "
               f"{100 * runaway['spin_share']:.1f}% for the aluminium cylinder and {100 * release['spin_share']:.1f}% "
               "for the steel one: the runaway, which rolls, is ahead by just that share. The release rocks, and "
