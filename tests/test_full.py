@@ -150,10 +150,9 @@ def test_a_runaway_runs_on_and_the_reynolds_guard_stops_at_its_limit():
 def test_rhs_is_regular_through_the_centre(frame_terms, omega_a, omega_b):
     """The right-hand side is continuous at eps = 0 for any direction of approach: (2.1)-(2.2) as
     printed at any wall rates; with the quasi-steady frame terms where the walls stand still. Their
-    frame rate is chi' clipped to [min(0, Omega_a, Omega_b), max(0, Omega_a, Omega_b)] (full.frame_force),
-    and chi' = (e_chi . r')/eps runs to +-infinity at the centre with the direction of approach: with
-    turning walls the Coriolis force there is that of the one or the other end's rate
-    (tests/test_frame_terms.py)."""
+    frame rate is chi' capped in size at max(|Omega_a|, |Omega_b|) (full.frame_force), and chi' =
+    (e_chi . r')/eps runs to +-infinity at the centre with the direction of approach: with turning walls
+    the Coriolis force there is that of the one or the other cap (tests/test_frame_terms.py)."""
     apparatus = STEEL
     model = kernel_model("closed-form")
     args = full.run_args(apparatus, model, gap_floor=1e-9, frame_terms=frame_terms)

@@ -183,31 +183,32 @@ def frame_force(p, eps, eps_dot, chi_dot, omega_a=math.nan, omega_b=math.nan):
     centres stops being a steady frame as A passes near B: chi' =
     (e_chi . r')/eps grows without bound while the walls, and the fluid
     between them, turn at finite rates, and the force above would grow like
-    |r'|^2/eps. So the rate used is chi' clipped to the interval spanned by
-    0 and the wall rates, [min(0, Omega_a, Omega_b), max(0, Omega_a, Omega_b)]:
-    every part of the fluid turns at a rate between those of its walls
-    (circular Couette flow), and the lab frame, rate 0, is a steady frame
-    whenever the line of centres stands still. This has no free constant,
-    and it
+    |r'|^2/eps. No part of the fluid turns faster than the faster wall
+    (circular Couette flow), so the rate used is chi' capped in size at that
+    wall's, [-M, M] with M = max(|Omega_a|, |Omega_b|). This has no free
+    constant, and it
 
-    * is chi' wherever chi' lies between 0 and a wall rate: the runaway and
-      the approach to contact, where Omega_a ~ Omega_b ~ chi', and steady
-      rolling, where chi' = 0 while the walls turn. There the steady
-      Navier-Stokes force is the Stokes force plus the relative flow's
-      first-order correction, with no frame force (tests/test_frame_terms.py);
-      a clip to the wall rates alone would add (m_eff - m'_a) eps Omega^2;
+    * is chi' wherever |chi'| <= M: the runaway and the approach to contact,
+      where Omega_a ~ Omega_b ~ chi', and steady rolling, where chi' = 0 while
+      the walls turn. There the steady Navier-Stokes force is the Stokes force
+      plus the relative flow's first-order correction, with no frame force
+      (tests/test_frame_terms.py), and the rate is smooth in chi' about 0, where
+      a steady state sits (a cap at 0 itself made the integrator crawl there);
     * at eps -> 0, with the fluid turning rigidly (Omega_a = Omega_b = Omega),
       tends to the Coriolis force 2 m''_a Omega J r' on a disc crossing the
       fluid in the sense of its rotation, finite where the chi' form diverges.
-      A disc crossing against it is given rate 0 and misses 2 m''_a Omega |r'|,
-      of the order of the next item;
-    * elsewhere (chi' outside the interval) exceeds the chi' form by
-      m''_a (1 + m''_a/m_f) (eps W^2, 2 W eps'), W = R - chi' with R the end
-      of the interval nearer to chi'. Where R is a wall's rate, along e_eps that is at
-      most (1 + m''_a/m_f) (delta/a) Re*/6 of the thin-gap Stokes force (2.6)
-      of that wall's rotation (0.14 Re* for the apparatus): the order of the
-      inertial error G Re* of the relative flow (G up to 0.08 there,
-      :mod:`lubrication.inertia`), which the quasi-steady forces carry anyway.
+      A disc crossing against it is given rate -Omega, and the force
+      -2 m''_a Omega J r': off by 4 m''_a |Omega r'|, Re*/3 of the thin-gap
+      Stokes drag 12 pi mu L (a/delta)^3 |r'| of the disc, the order of the
+      next item;
+    * elsewhere (|chi'| > M) exceeds the chi' form by
+      m''_a (1 + m''_a/m_f) (eps W^2, 2 W eps'), W = +-M - chi' the rate of the
+      cap relative to the line of centres, no larger than either wall's
+      relative rate. Along e_eps that is at most (1 + m''_a/m_f) (delta/a)
+      Re*/6 of the thin-gap Stokes force (2.6) of a wall's rotation at W
+      (0.14 Re* for the apparatus): the order of the inertial error G Re* of
+      the relative flow (G up to 0.08 there, :mod:`lubrication.inertia`), which
+      the quasi-steady forces carry anyway.
 
     ``omega_a``, ``omega_b`` omitted: the fluid is taken to turn with the line
     of centres (Omega = chi'), as in contact, where Omega_a ~ Omega_b ~ chi'.
@@ -217,7 +218,8 @@ def frame_force(p, eps, eps_dot, chi_dot, omega_a=math.nan, omega_b=math.nan):
         return 0.0, 0.0
     rate = chi_dot
     if not math.isnan(omega_a):
-        rate = min(max(chi_dot, min(0.0, omega_a, omega_b)), max(0.0, omega_a, omega_b))
+        top = max(abs(omega_a), abs(omega_b))
+        rate = min(max(chi_dot, -top), top)
     extra = p[_MEFF] - p[_MRED]
     return extra * eps * rate * (rate - 2.0 * chi_dot), 2.0 * extra * rate * eps_dot
 
