@@ -104,10 +104,12 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         centres: m'_a on the centripetal and Coriolis terms
         (:func:`dynamics.equations.full.frame_force`; the closer to the coupled
         Navier-Stokes runs, docs/navier_stokes.md), or (2.1)-(2.2) as printed.
-    fluid_spin : {"none", "couette"}
+    fluid_spin : {"none", "couette", "eccentric"}
         The fluid's own angular momentum in (2.4): dropped, as the paper
-        writes it, or that of the concentric Couette flow,
-        m_f (a^2 Omega_a + b^2 Omega_b)/2 (:data:`dynamics.equations.full.FLUID_SPIN`).
+        writes it, that of the concentric Couette flow,
+        m_f (a^2 Omega_a + b^2 Omega_b)/2, or that of the Stokes flow at the
+        state's eccentricity, the closest to the coupled Navier-Stokes runs
+        (:data:`dynamics.equations.full.FLUID_SPIN`, :func:`dynamics.equations.full.spin_state`).
     navier_stokes : NavierStokesOptions, optional
         The flow solver's grid and the times of flow snapshots
         (:class:`dynamics.equations.navier_stokes.NavierStokesOptions`).

@@ -135,11 +135,11 @@ snail_api_groups = [
         "lubrication", "lubrication.registry", "lubrication.spec", "lubrication.kernels", "lubrication.geometry", "lubrication.closed_form",
         "lubrication.reynolds", "lubrication.cavitation", "lubrication.stokes_exact", "lubrication.stokes",
         "lubrication.reynolds2d", "lubrication.finite_length", "lubrication.stokes3d",
-        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.film", "lubrication.film_transport", "numerics.files",
+        "lubrication.navier_stokes", "lubrication.inertia", "lubrication.angular_momentum", "lubrication.film", "lubrication.film_transport", "numerics.files",
     ]),
     ("Compiled kernels of the force models", [
         "lubrication.reynolds_kernels", "lubrication.cavitation_kernels", "lubrication.reynolds2d_kernels",
-        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.film_kernels", "numerics",
+        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.spin_table", "lubrication.film_kernels", "numerics",
         "numerics.jit", "numerics.stamps",
     ]),
     ("Simulation", [

@@ -130,13 +130,14 @@ def _contact_rates(y, p, kappa_star, omk_star, locked, sigma, tan_psi_hat, model
     f_eps, f_chi, t_a = FORCES(model, a, b, p[3], p[2], kappa_star, omk_star, 0.0,  # noqa: F821
                                omega_a - chi_dot, omega_b - chi_dot)
     frame_eps, frame_chi = full.frame_force(p, eps, 0.0, chi_dot, omega_a, omega_b)
-    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
-    gravity = full.gravity_response(p)
+    spin = full.spin_state(p, kappa_star, eps, 0.0, chi_dot, omega_a, omega_b)
+    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a, spin)
+    gravity = full.gravity_response(p, eps, ex, ez, spin)
     base = np.empty(4)
     for i in range(4):
         base[i] = fluid[i] + gravity[i]
-    normal = full.force_response(p, eps, ex, ez, -1.0, 0.0, 0.0)   # unit N: pushes A towards B
-    friction = full.force_response(p, eps, ex, ez, 0.0, 1.0, a)    # unit F along e_chi, torque a F
+    normal = full.force_response(p, eps, ex, ez, -1.0, 0.0, 0.0, spin)   # unit N: pushes A towards B
+    friction = full.force_response(p, eps, ex, ez, 0.0, 1.0, a, spin)    # unit F along e_chi, torque a F
     # eps'' = e_eps . r'' + eps chi'^2 and s' = e_chi . r'' + a Omega_a' - (a + eps) Omega_b'
     arm = a + eps
     r0 = ex * base[0] + ez * base[1] + eps * chi_dot * chi_dot
@@ -199,8 +200,9 @@ def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: flo
     eps = contact.kappa_star * apparatus.delta
     ex, ez = math.sin(chi), math.cos(chi)
     e_eps, e_chi = np.array([ex, ez]), np.array([ez, -ex])
-    normal = np.array(full.force_response(p, eps, ex, ez, -1.0, 0.0, 0.0))
-    friction = np.array(full.force_response(p, eps, ex, ez, 0.0, 1.0, apparatus.a))
+    spin = full.spin_state(p, contact.kappa_star, eps, e_eps @ velocity, (e_chi @ velocity) / eps, omega_a, omega_b)
+    normal = np.array(full.force_response(p, eps, ex, ez, -1.0, 0.0, 0.0, spin))
+    friction = np.array(full.force_response(p, eps, ex, ez, 0.0, 1.0, apparatus.a, spin))
     v = np.array([*velocity, omega_a, omega_b], dtype=float)
     radial = np.array([ex, ez, 0.0, 0.0])
     sliding = np.array([*e_chi, apparatus.a, -(apparatus.a + eps)])

@@ -289,14 +289,15 @@ def _contact_rates(y, p, c, locked, sigma, model):
     f_eps, f_chi, t_a = FORCES(model, a, b, p[3], p[2], kappa, omk, eps_dot,  # noqa: F821
                                omega_a - chi_dot, omega_b - chi_dot)
     frame_eps, frame_chi = full.frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
-    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
-    gravity = full.gravity_response(p)
+    spin = full.spin_state(p, kappa, eps, eps_dot, chi_dot, omega_a, omega_b)
+    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a, spin)
+    gravity = full.gravity_response(p, eps, ex, ez, spin)
     base = np.empty(4)
     for i in range(4):
         base[i] = fluid[i] + gravity[i]
     tilt = delta * (ka + kb) / eps
-    normal = full.force_response(p, eps, ex, ez, -1.0, tilt, 0.0 - delta * ka)  # unit N along grad G
-    friction = full.force_response(p, eps, ex, ez, 0.0, 1.0, a)    # unit F along e_chi, torque a F
+    normal = full.force_response(p, eps, ex, ez, -1.0, tilt, 0.0 - delta * ka, spin)  # unit N along grad G
+    friction = full.force_response(p, eps, ex, ez, 0.0, 1.0, a, spin)    # unit F along e_chi, torque a F
     curl = kaa * dot_a * dot_a + 2.0 * kab * dot_a * dot_b + kbb * dot_b * dot_b
     arm = a + eps
     # G'' = -(r0 + N r_n + F r_f): eps'' less eps*'' in the accelerations
@@ -420,7 +421,7 @@ def _compliant_rhs(t, y, args):
     for i in range(7):
         out[off + i] = f[i]
     if r[6] != 0.0 or r[7] != 0.0:
-        response = full.force_response(p, r[0], r[1], r[2], r[3], r[4], r[5])
+        response = full.force_response(p, r[0], r[1], r[2], r[3], r[4], r[5], full.state_spin(p, core))
         for i in range(4):
             out[off + 2 + i] += response[i]
     if off > 0:
@@ -694,8 +695,9 @@ class RoughFullRun:
         ex, ez = math.sin(chi), math.cos(chi)
         e_eps, e_chi = np.array([ex, ez]), np.array([ez, -ex])
         tilt = delta * (ka + kb) / eps
-        normal = np.array(full.force_response(p, eps, ex, ez, -1.0, tilt, 0.0 - delta * ka))
-        friction = np.array(full.force_response(p, eps, ex, ez, 0.0, 1.0, a))
+        spin = full.spin_state(p, kappa, eps, e_eps @ velocity, (e_chi @ velocity) / eps, omega_a, omega_b)
+        normal = np.array(full.force_response(p, eps, ex, ez, -1.0, tilt, 0.0 - delta * ka, spin))
+        friction = np.array(full.force_response(p, eps, ex, ez, 0.0, 1.0, a, spin))
         v = np.array([*velocity, omega_a, omega_b], dtype=float)
         radial = np.array([ex - tilt * ez, ez + tilt * ex, delta * ka, delta * kb])  # -grad G
         sliding = np.array([*e_chi, a, -(a + eps)])

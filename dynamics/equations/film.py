@@ -82,8 +82,9 @@ def rhs(t, y, args):
     f_eps, f_chi, t_a, d_reservoir = _film(film, a, b, p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
                                            omega_b - chi_dot, y[7:7 + n], y[7 + n], dy[7:7 + n])
     frame_eps, frame_chi = full.frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
-    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
-    gravity = full.gravity_response(p)
+    spin = full.spin_state(p, kappa, eps, eps_dot, chi_dot, omega_a, omega_b)
+    fluid = full.force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a, spin)
+    gravity = full.gravity_response(p, eps, ex, ez, spin)
     scale = 1.0 / (delta * zeta)
     stretch = big_u * big_u * eps_dot
     dy[0] = (vx + stretch * ex) * scale

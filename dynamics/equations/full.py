@@ -65,6 +65,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from lubrication.angular_momentum import spin_shares
 from lubrication.kernels import KernelModel
 from numerics.hybrid import Phase
 from numerics.jit import jit, specialise
@@ -93,6 +94,8 @@ __all__ = [
     "force_response",
     "frame_force",
     "gravity_response",
+    "spin_state",
+    "state_spin",
     "initial_state",
     "observables",
     "params_array",
@@ -116,7 +119,7 @@ POLAR_STATE_NAMES = ("u_x", "u_z", "q_r", "q_t", "omega_a", "omega_b", "x_b")
 POLAR_ABOVE, CARTESIAN_BELOW = 2.0, 1.0
 
 # indices into the parameter array built by params_array
-_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME, _SPIN = range(14)
+_A, _B, _LEN, _MU, _MEFF, _MRED, _MTOT, _MB, _MA, _G, _SIN, _COS, _FRAME, _SPIN, _ECCENTRIC = range(15)
 
 #: How the equations treat the fluid's inertia in the frame of the line of centres: "quasi-steady"
 #: carries m'_a instead of m_eff on the centripetal and Coriolis terms while the fluid turns with the
@@ -127,8 +130,9 @@ FRAME_TERMS = ("quasi-steady", "paper")
 DEFAULT_FRAME_TERMS = "quasi-steady"
 #: The fluid's own angular momentum in (2.4): "none" drops it, as the paper writes (2.4); "couette" adds that of
 #: the concentric Couette flow between the walls, m_f (a^2 Omega_a + b^2 Omega_b)/2, which a fluid turning with
-#: the cylinders carries (against the coupled Navier-Stokes runs: docs/stokes_limit.md).
-FLUID_SPIN = ("none", "couette")
+#: the cylinders carries (against the coupled Navier-Stokes runs: docs/stokes_limit.md); "eccentric" that of the
+#: Stokes flow at the run's eccentricity (:func:`spin_state`), which tends to "couette" as kappa -> 0.
+FLUID_SPIN = ("none", "couette", "eccentric")
 
 
 def check_frame_terms(frame_terms: str) -> str:
@@ -148,7 +152,7 @@ def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: 
     ap = apparatus
     return np.array([ap.a, ap.b, ap.length, ap.mu, ap.m_eff, ap.m_a_reduced, ap.M, ap.m_b, ap.m_a,
                      ap.g, math.sin(ap.alpha), math.cos(ap.alpha), float(frame_terms == "quasi-steady"),
-                     ap.m_f if fluid_spin == "couette" else 0.0])
+                     0.0 if fluid_spin == "none" else ap.m_f, float(fluid_spin == "eccentric")])
 
 
 @jit(inline="always")
@@ -242,30 +246,80 @@ def _geometry(y, delta):
 
 
 @jit(inline="always")
-def force_response(p, eps, ex, ez, f_eps, f_chi, t_a):
+def spin_state(p, kappa, eps, eps_dot, chi_dot, omega_a, omega_b):
+    """(J_a, J_b, K, torque): the fluid's own angular momentum in (2.4), as :func:`force_response` and
+    :func:`gravity_response` take it.
+
+    The fluid's angular momentum about its centre of mass, in the frame moving with B
+    without turning, is L = J_a Omega_a + J_b Omega_b + K eps^2 chi'. With "couette" J_w
+    = m_f r_w^2 / 2 (r_a = a, r_b = b) and K = 0; with "eccentric" (:mod:`lubrication.angular_momentum`)
+    J_w = lambda_w m_f r_w^2 / 2, lambda_w = 1 - mu_w kappa^2, and K eps^2 =
+    (m_f/2)(a^2 mu_a + b^2 mu_b) kappa^2 - (m_eff - m'_a) eps^2: the Stokes flow's
+    rho L I_B chi' + J_a W_a + J_b W_b about B (lubrication.stokes.fluid_angular_momentum), less the
+    angular momentum of the fluid's centre of mass about B, (m''_a^2/m_f) eps^2 chi', which m_eff already
+    carries in (2.4). dL/dt enters (2.4); with eps^2 chi'' = (z x'' - x z'') - 2 eps eps' chi' it is
+    J_a Omega_a' + J_b Omega_b' + K (z x'' - x z'') less ``torque``,
+    2 K eps eps' chi' - kappa' (dk/dkappa chi' + dJ_a/dkappa Omega_a + dJ_b/dkappa Omega_b), k = K eps^2.
+    """
+    a, b = p[_A], p[_B]
+    half_a, half_b = 0.5 * p[_SPIN] * a * a, 0.5 * p[_SPIN] * b * b
+    if p[_ECCENTRIC] == 0.0:
+        return half_a, half_b, 0.0, 0.0
+    delta = b - a
+    mu_a, mu_b, slope_a, slope_b = spin_shares(kappa, delta / a)
+    centre = p[_MEFF] - p[_MRED]  # m''_a (1 + m''_a/m_f)
+    dj_a = -half_a * kappa * (2.0 * mu_a + kappa * slope_a)
+    dj_b = -half_b * kappa * (2.0 * mu_b + kappa * slope_b)
+    big_k = (half_a * mu_a + half_b * mu_b) / (delta * delta) - centre
+    dk = -dj_a - dj_b - 2.0 * centre * delta * delta * kappa
+    torque = 2.0 * big_k * eps * eps_dot * chi_dot - (eps_dot / delta) * (dk * chi_dot + dj_a * omega_a + dj_b * omega_b)
+    return half_a * (1.0 - mu_a * kappa * kappa), half_b * (1.0 - mu_b * kappa * kappa), big_k, torque
+
+
+@jit(inline="always")
+def state_spin(p, y):
+    """:func:`spin_state` at a state of ``rhs`` (:func:`model_functions`), whose velocity is Cartesian."""
+    kappa, _, _, eps, _, ex, ez = _geometry(y, p[_B] - p[_A])
+    chi_dot = (ez * y[2] - ex * y[3]) / eps if eps > 0.0 else 0.0
+    return spin_state(p, kappa, eps, ex * y[2] + ez * y[3], chi_dot, y[4], y[5])
+
+
+@jit(inline="always")
+def _inertia_b(p, eps, ez, spin):
+    """The coefficient of Omega_b' in (2.4) once r'' and Omega_a' are eliminated (module docstring)."""
+    b, m_r, m_eff = p[_B], p[_MRED], p[_MEFF]
+    return (p[_MTOT] + p[_MB]) * b * b + spin[1] - (m_r * b) ** 2 / m_eff - spin[2] * m_r * b * eps * ez / m_eff
+
+
+@jit(inline="always")
+def force_response(p, eps, ex, ez, f_eps, f_chi, t_a, spin):
     """(x'', z'', Omega_a', Omega_b') due to a force (f_eps, f_chi) on A and a torque t_a about A.
 
     The part of (2.1)-(2.4) linear in the forces (module docstring), without
     gravity: the fluid's, or a contact force acting between the cylinders.
+    ``spin``: the fluid's own angular momentum in the state (:func:`spin_state`).
     """
     a, b = p[_A], p[_B]
     cx, cz = ez, -ex  # e_chi
     fx = f_eps * ex + f_chi * cx
     fz = f_eps * ez + f_chi * cz
     m_eff, m_r = p[_MEFF], p[_MRED]
-    # with fluid_spin, (m_f/2)(a^2 Omega_a' + b^2 Omega_b') on the left of (2.4), Omega_a' from (2.3)
-    inertia_b = (p[_MTOT] + p[_MB] + 0.5 * p[_SPIN]) * b * b - (m_r * b) ** 2 / m_eff
-    omega_b_dot = (-t_a * (1.0 + p[_SPIN] / p[_MA]) - eps * f_chi - (m_r * b / m_eff) * fx) / inertia_b
+    # with the fluid's spin, J_a Omega_a' + J_b Omega_b' + K (z x'' - x z'') on the left of (2.4), Omega_a'
+    # from (2.3) and z x'' - x z'' from (2.1)-(2.2)
+    omega_b_dot = (-t_a * (1.0 + spin[0] / (0.5 * p[_MA] * a * a)) - eps * f_chi * (1.0 + spin[2] / m_eff)
+                   - (m_r * b / m_eff) * fx) / _inertia_b(p, eps, ez, spin)
     return (fx - m_r * b * omega_b_dot) / m_eff, fz / m_eff, t_a / (0.5 * p[_MA] * a * a), omega_b_dot
 
 
 @jit(inline="always")
-def gravity_response(p):
-    """(x'', z'', Omega_a', Omega_b') due to gravity alone, from the same equations."""
+def gravity_response(p, eps, ex, ez, spin):
+    """(x'', z'', Omega_a', Omega_b') due to gravity alone, and the state's ``spin`` torque, from the same
+    equations."""
     b, m_eff, m_r = p[_B], p[_MEFF], p[_MRED]
     gs, gc = p[_G] * p[_SIN], p[_G] * p[_COS]
-    inertia_b = (p[_MTOT] + p[_MB] + 0.5 * p[_SPIN]) * b * b - (m_r * b) ** 2 / m_eff
-    omega_b_dot = (p[_MTOT] * gs * b - (m_r * b / m_eff) * m_r * gs) / inertia_b
+    # K (z x'' - x z'') takes m_r g (z sin alpha + x cos alpha) / m_eff of gravity through r''
+    moment = m_r * eps * (ez * gs + ex * gc) * spin[2] / m_eff
+    omega_b_dot = (p[_MTOT] * gs * b - (m_r * b / m_eff) * m_r * gs - moment + spin[3]) / _inertia_b(p, eps, ez, spin)
     return (m_r * gs - m_r * b * omega_b_dot) / m_eff, -m_r * gc / m_eff, 0.0, omega_b_dot
 
 
@@ -278,8 +332,9 @@ def _accelerations(forces, p, model, kappa, omk, eps, ex, ez, eps_dot, chi_dot, 
     f_eps, f_chi, t_a = forces(model, p[_A], p[_B], p[_MU], p[_LEN], kappa, omk, eps_dot, omega_a - chi_dot,
                                omega_b - chi_dot)
     frame_eps, frame_chi = frame_force(p, eps, eps_dot, chi_dot, omega_a, omega_b)
-    fluid = force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a)
-    gravity = gravity_response(p)
+    spin = spin_state(p, kappa, eps, eps_dot, chi_dot, omega_a, omega_b)
+    fluid = force_response(p, eps, ex, ez, f_eps + frame_eps, f_chi + frame_chi, t_a, spin)
+    gravity = gravity_response(p, eps, ex, ez, spin)
     return (fluid[0] + gravity[0], fluid[1] + gravity[1], fluid[2] + gravity[2], fluid[3] + gravity[3])
 
 

@@ -126,7 +126,9 @@ class Model:
                                                      "'paper' is (2.1)-(2.2) as printed", choices=FRAME_TERMS)
     fluid_spin: str = key("none", help="full equations: 'none' is (2.4) as printed, which drops the fluid's own "
                                        "angular momentum; 'couette' adds that of the concentric Couette flow, "
-                                       "m_f (a^2 Omega_a + b^2 Omega_b)/2 (docs/stokes_limit.md)", choices=FLUID_SPIN)
+                                       "m_f (a^2 Omega_a + b^2 Omega_b)/2; 'eccentric' that of the Stokes flow at "
+                                       "the eccentricity, the closest to the Navier-Stokes runs "
+                                       "(docs/site/equations_of_motion.md)", choices=FLUID_SPIN)
 
     def __post_init__(self):
         check_fields(self)
