@@ -23,6 +23,7 @@ from __future__ import annotations
 from numerics.jit import jit
 
 from .spin_table import DELTA_NODES, KAPPA_NODES, MU, SLOPE
+from .tables import cell
 
 __all__ = ["spin_shares"]
 
@@ -51,12 +52,7 @@ def spin_shares(kappa, delta_over_a):
     edge = KAPPA_NODES[nk - 1]
     k = min(kappa, edge)
     d = min(max(delta_over_a, DELTA_NODES[0]), DELTA_NODES[nd - 1])
-    i = 0
-    while i < nk - 2 and k > KAPPA_NODES[i + 1]:
-        i += 1
-    j = 0
-    while j < nd - 2 and d > DELTA_NODES[j + 1]:
-        j += 1
+    i, j = cell(KAPPA_NODES, k), cell(DELTA_NODES, d)
     w = (d - DELTA_NODES[j]) / (DELTA_NODES[j + 1] - DELTA_NODES[j])
     out = [0.0, 0.0, 0.0, 0.0]
     for column in range(2):

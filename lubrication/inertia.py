@@ -100,6 +100,7 @@ from numerics.jit import jit
 
 from . import kernels
 from .geometry import Annulus, Fluid, FluidForces, Motion, check_finite, check_range
+from .tables import cell
 
 __all__ = ["CORRECTED_MEASURED_TO", "CORRECTED_SECOND_ORDER", "INTERPOLATION_ABSOLUTE", "INTERPOLATION_RELATIVE",
            "KAPPA_AXIS", "TABLE_COLUMNS", "corrected_error_estimate", "first_order_f_eps",
@@ -422,12 +423,7 @@ def _interpolate(kappa, d, kappa_nodes, delta_nodes, table):
     nk, nd = kappa_nodes.size, delta_nodes.size
     k = min(max(kappa, kappa_nodes[0]), kappa_nodes[nk - 1])
     x = min(max(d, delta_nodes[0]), delta_nodes[nd - 1])
-    i = 0
-    while i < nk - 2 and k > kappa_nodes[i + 1]:
-        i += 1
-    j = 0
-    while j < nd - 2 and x > delta_nodes[j + 1]:
-        j += 1
+    i, j = cell(kappa_nodes, k), cell(delta_nodes, x)
     tk = (k - kappa_nodes[i]) / (kappa_nodes[i + 1] - kappa_nodes[i])
     tx = (x - delta_nodes[j]) / (delta_nodes[j + 1] - delta_nodes[j])
     return ((1.0 - tk) * (1.0 - tx) * table[i, j] + tk * (1.0 - tx) * table[i + 1, j]

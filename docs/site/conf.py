@@ -139,7 +139,7 @@ snail_api_groups = [
     ]),
     ("Compiled kernels of the force models", [
         "lubrication.reynolds_kernels", "lubrication.cavitation_kernels", "lubrication.reynolds2d_kernels",
-        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.spin_table", "lubrication.film_kernels", "numerics",
+        "lubrication.stokes_mesh", "lubrication.inertia_table", "lubrication.spin_table", "lubrication.tables", "lubrication.film_kernels", "numerics",
         "numerics.jit", "numerics.stamps",
     ]),
     ("Simulation", [
