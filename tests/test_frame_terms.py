@@ -292,7 +292,7 @@ def test_in_steady_rolling_the_flow_adds_the_relative_flows_inertia_and_no_frame
     Stokes force what the relative flow's first-order correction gives, and nothing else: the frame rate
     of the quasi-steady terms is chi' = 0 there. The first-order correction leaves O(Re*^2) of the Stokes force,
     9e-5 of it at Re* = 1 (lubrication.inertia.inertial_force_correction), the tolerance here. A frame
-    rate clipped to the wall rates alone would add (m_eff - m'_a) eps Omega^2, 800 (kappa = 0.5) and 500
+    rate clipped between the two wall rates would add (m_eff - m'_a) eps Omega^2, 800 (kappa = 0.5) and 500
     (kappa = 0.9) times the tolerance; the first-order correction misses by 2e-3 of it."""
     from lubrication.geometry import Annulus, Fluid, Motion
     from lubrication.inertia import first_order_f_eps, reduced_reynolds
