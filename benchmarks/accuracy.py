@@ -57,7 +57,8 @@ Outputs: ``benchmarks/results/accuracy.json`` (all numbers), ``accuracy.md``
 ``dynamics/data/model_choice.json`` that :mod:`dynamics.app.auto` chooses from
 (:func:`model_choice`; ``generators/model_choice.py`` writes it).
 Run ``python -m benchmarks.accuracy`` from the project root (about 10 minutes
-on 2 cores).
+on 2 cores); ``--trajectories`` runs part B again and keeps part A's stored
+numbers (after a change to the equations of motion, which the forces do not see).
 """
 
 from __future__ import annotations
@@ -321,11 +322,7 @@ def run(deltas=DELTAS, kappas=KAPPAS, trajectory_deltas=TRAJECTORY_DELTAS, equat
         for kappa in kappas:
             forces.append(force_case(delta, kappa, rounds=rounds, fem_rounds=fem_rounds))
             print(f"forces delta/a {delta} kappa {kappa}: {time.perf_counter() - started:.0f} s", file=sys.stderr)
-    trajectories = []
-    for delta in sorted(set(trajectory_deltas) | set(equation_deltas)):
-        full = delta in trajectory_deltas
-        trajectories.append(trajectory_study(delta, repeats=repeats if full else 1, full=full))
-        print(f"trajectories delta/a {delta}: {time.perf_counter() - started:.0f} s", file=sys.stderr)
+    trajectories = trajectory_part(trajectory_deltas, equation_deltas, repeats, started)
     return {
         "machine": machine(),
         "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
@@ -419,7 +416,12 @@ def to_markdown(results: dict, choice: dict) -> str:
     m = results["machine"]
     lines = ["# Forces and trajectories: cost against accuracy", "",
              (f"{m['cpu']}, {m['cores']} cores; Python {m['python']}, numpy {m['numpy']}, scipy {m['scipy']}, "
-              f"numba {m['numba']}; {results['date']}; run {results['run_seconds']:.0f} s."), "",
+              f"numba {m['numba']}; {results['date']}; run {results['run_seconds']:.0f} s."
+              + ("" if "trajectories_rerun" not in results else
+                 f" The trajectories run again on {results['trajectories_rerun']['date']} "
+                 f"({results['trajectories_rerun']['machine']['cpu']}, "
+                 f"{results['trajectories_rerun']['run_seconds']:.0f} s)."))
+             , "",
              "## Forces at one instant", "",
              "Error: largest relative error of the five resistance coefficients against the exact 2-D Stokes "
              "solution (T_a per W_b against |T_a per W_a|), largest over kappa in "
@@ -538,6 +540,28 @@ def pareto_figure(results: dict, choice: dict):
     return fig
 
 
+def trajectory_part(trajectory_deltas=TRAJECTORY_DELTAS, equation_deltas=EQUATION_DELTAS,
+                    repeats=TRAJECTORY_REPEATS, started: float | None = None) -> list[dict]:
+    """Part B: :func:`trajectory_study` at every delta/a of either tuple."""
+    started = time.perf_counter() if started is None else started
+    trajectories = []
+    for delta in sorted(set(trajectory_deltas) | set(equation_deltas)):
+        full = delta in trajectory_deltas
+        trajectories.append(trajectory_study(delta, repeats=repeats if full else 1, full=full))
+        print(f"trajectories delta/a {delta}: {time.perf_counter() - started:.0f} s", file=sys.stderr)
+    return trajectories
+
+
+def rerun_trajectories(results: dict) -> dict:
+    """Stored results with part B run again (after a change to the equations of motion, which part A's
+    forces do not see); when and where is recorded beside the forces' date."""
+    started = time.perf_counter()
+    results["trajectories"] = trajectory_part(started=started)
+    results["trajectories_rerun"] = {"date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
+                                     "machine": machine(), "run_seconds": time.perf_counter() - started}
+    return results
+
+
 def rederive(results: dict) -> dict:
     """Stored results with every trajectory error recomputed from the stored final states.
 
@@ -550,7 +574,8 @@ def rederive(results: dict) -> dict:
 
 
 def main(argv=None) -> None:
-    """Run the study and publish it; ``--from-json`` republishes the stored results instead."""
+    """Run the study and publish it; ``--from-json`` republishes the stored results instead, ``--trajectories``
+    with part B run again."""
     import argparse
 
     import matplotlib.pyplot as plt
@@ -558,8 +583,11 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--from-json", action="store_true",
                         help="re-derive the errors and republish from results/accuracy.json, without running")
+    parser.add_argument("--trajectories", action="store_true",
+                        help="run the trajectories again and keep the stored forces (results/accuracy.json)")
     args = parser.parse_args(argv)
-    results = (rederive(json.loads((RESULTS / "accuracy.json").read_text())) if args.from_json else run())
+    stored = json.loads((RESULTS / "accuracy.json").read_text()) if args.from_json or args.trajectories else None
+    results = rederive(stored) if args.from_json else rerun_trajectories(stored) if args.trajectories else run()
     write_text(RESULTS / "accuracy.json", json.dumps(results, indent=1) + "\n")  # first: ten minutes of numbers
     choice = model_choice(results)
     fig = pareto_figure(results, choice)

@@ -8,6 +8,8 @@ to how :mod:`dynamics.app.auto` reads it; then check ``tests/test_auto.py`` and 
 
     python generators/model_choice.py              # runs the study (minutes), then writes the file
     python generators/model_choice.py --from-json  # from benchmarks/results/accuracy.json as stored
+                                                   # (python -m benchmarks.accuracy --trajectories updates it
+                                                   # after a change to the equations of motion)
 """
 
 from __future__ import annotations
