@@ -16,11 +16,13 @@ __all__ = ["checks_table", "rewrite"]
 
 
 def checks_table(checks) -> list[str]:
-    """A markdown table of ``checks``, each passed or not as :func:`validation.checks.verdict` judges it."""
+    """A markdown table of ``checks``, each passed or not as :func:`validation.checks.verdict` judges it (a name's
+    bars, as in |x_b error|, escaped: they would split its cell)."""
     lines = ["| check | measured | reference | tolerance | passed |", "|---|---|---|---|---|"]
     for c in checks:
         passed = verdict(c.kind, c.measured, c.reference, c.tolerance)
-        lines.append(f"| {c.name} | {c.measured:.4g} | {c.reference:.4g} | {c.tolerance:.3g} | "
+        name = c.name.replace("|", "\\|")
+        lines.append(f"| {name} | {c.measured:.4g} | {c.reference:.4g} | {c.tolerance:.3g} | "
                      f"{'yes' if passed else 'no'} |")
     return lines
 
