@@ -54,7 +54,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
              forces: KernelModel | str = "stokes-exact", contact=None, limits: Limits = Limits(),
              method: str = "radau", rtol: float | None = None, output_interval: float | None = None, t_eval=None,
              max_steps: int = 2_000_000, progress=None, frame_terms: str = full.DEFAULT_FRAME_TERMS,
-             fluid_spin: str = "none", navier_stokes=None) -> Trajectory:
+             fluid_spin: str = full.DEFAULT_FLUID_SPIN, navier_stokes=None) -> Trajectory:
     """Integrate a model of the snail cylinder from ``initial`` over ``t_end``.
 
     Parameters
@@ -104,12 +104,13 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         centres: m'_a on the centripetal and Coriolis terms
         (:func:`dynamics.equations.full.frame_force`; the closer to the coupled
         Navier-Stokes runs, docs/navier_stokes.md), or (2.1)-(2.2) as printed.
-    fluid_spin : {"none", "couette", "eccentric"}
-        The fluid's own angular momentum in (2.4): dropped, as the paper
-        writes it, that of the concentric Couette flow,
-        m_f (a^2 Omega_a + b^2 Omega_b)/2, or that of the Stokes flow at the
-        state's eccentricity, the closest to the coupled Navier-Stokes runs
+    fluid_spin : {"eccentric", "couette", "none"}
+        The fluid's own angular momentum in (2.4): that of the Stokes flow at
+        the state's eccentricity, the closest to the coupled Navier-Stokes
+        runs (the default), that of the concentric Couette flow,
+        m_f (a^2 Omega_a + b^2 Omega_b)/2, or none, as the paper writes (2.4)
         (:data:`dynamics.equations.full.FLUID_SPIN`, :func:`dynamics.equations.full.spin_state`).
+        The other equations take the default only.
     navier_stokes : NavierStokesOptions, optional
         The flow solver's grid and the times of flow snapshots
         (:class:`dynamics.equations.navier_stokes.NavierStokesOptions`).
@@ -144,7 +145,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
     if fluid_spin not in full.FLUID_SPIN:
         msg = f"fluid_spin must be one of {', '.join(full.FLUID_SPIN)}, got {fluid_spin!r}"
         raise ValueError(msg)
-    if fluid_spin != "none" and equations != "full":
+    if fluid_spin != full.DEFAULT_FLUID_SPIN and equations != "full":
         msg = (f"fluid_spin applies to the full equations (2.4); the {equations} equations "
                + ("drop the O(delta/a) fluid mass" if equations == "reduced" else "carry the fluid's spin themselves"))
         raise ValueError(msg)
@@ -202,7 +203,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         raise ValueError(msg)
     model = (None if equations != "full" or film else forces if isinstance(forces, KernelModel)
              else kernel_model(forces))
-    past_stokes = _check_stokes(system, limits, equations, frame_terms)
+    past_stokes = _check_stokes(system, limits, equations, frame_terms, fluid_spin)
     bar = _Bar(t_end, unit) if progress is True else None
     run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms,
                fluid_spin)
@@ -253,7 +254,7 @@ class _Bar:
         self.bar.close()
 
 
-def _check_stokes(system, limits: Limits, equations: str, frame_terms: str) -> dict | None:
+def _check_stokes(system, limits: Limits, equations: str, frame_terms: str, fluid_spin: str) -> dict | None:
     """A quasi-steady run of a device whose Stokes number exceeds ``max_stokes_number``: refused (ValueError)
     if the limits stop, else the record of its passage at t = 0. None within the limit, for the coupled
     Navier-Stokes run, and without an apparatus."""
@@ -262,7 +263,7 @@ def _check_stokes(system, limits: Limits, equations: str, frame_terms: str) -> d
     stokes = system.delta**2 / (system.nu * system.tau)
     if stokes <= limits.stokes:
         return None
-    unsteady = unsteady_error(stokes, frame_terms)
+    unsteady = unsteady_error(stokes, frame_terms, fluid_spin=fluid_spin)
     if limits.stops:
         raise ValueError(stokes_message(limits, unsteady, stopping=True))
     return {"name": "stokes", "t": 0.0, "reason": stokes_message(limits, unsteady, stopping=False)}

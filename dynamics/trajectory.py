@@ -198,7 +198,7 @@ class Recorder:
     integrates, and hands its rows to :meth:`trajectory` or :meth:`Recorder.contact_trajectory`."""
 
     def __init__(self, system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, progress,
-                 frame_terms=full.DEFAULT_FRAME_TERMS, fluid_spin="none"):
+                 frame_terms=full.DEFAULT_FRAME_TERMS, fluid_spin=full.DEFAULT_FLUID_SPIN):
         self.system, self.dimensionless, self.t_end = system, dimensionless, t_end
         self.limits, self.method, self.rtol = limits, method, rtol
         self.max_steps, self.progress, self.frame_terms = max_steps, progress, frame_terms
@@ -287,7 +287,7 @@ class Recorder:
                 trajectory.info["inertia"] = inertia_report(self.system, trajectory.columns,
                                                             corrected=self.inertia_corrected,
                                                             frame_terms=self.frame_terms,
-                                                            regime=trajectory.regime)
+                                                            regime=trajectory.regime, fluid_spin=self.fluid_spin)
         if warned:
             t_of = {id(e): float(fields["t"][i]) for e, i in zip(along, on_event)}  # in tau, as error_at's keys
             trajectory.info["limits_passed"] = [

@@ -50,18 +50,24 @@ def test_the_spin_share_is_the_fluid_annulus_moment_of_inertia():
     assert study.spin_share(ap) == pytest.approx(spin / (spin + rolling), rel=1e-12)
 
 
-def test_the_estimate_is_the_measured_error_between_and_beyond_the_points(stored):
+@pytest.mark.parametrize("spin", full.FLUID_SPIN)
+def test_the_estimate_is_the_measured_error_between_and_beyond_the_points(stored, spin):
+    """Each fluid spin's own errors, an error below the reference's own stated as that."""
     family = stored["families"][0]
+
+    def error(point):
+        return max(abs(point["models"]["paper"][spin]["x_b_relative"]), point["reference_error"])
+
     for p in family["points"]:
-        got = limits.unsteady_error(p["stokes_number"], "paper", "rocking")["estimated_x_b_error"]
-        assert got == pytest.approx(abs(p["models"]["paper"]["x_b_relative"]), rel=1e-12)
+        got = limits.unsteady_error(p["stokes_number"], "paper", "rocking", spin)["estimated_x_b_error"]
+        assert got == pytest.approx(error(p), rel=1e-12)
     first = family["points"][0]
-    below = limits.unsteady_error(0.1 * first["stokes_number"], "paper", "rocking")
-    assert below["estimated_x_b_error"] == pytest.approx(abs(first["models"]["paper"]["x_b_relative"]), rel=1e-12)
+    below = limits.unsteady_error(0.1 * first["stokes_number"], "paper", "rocking", spin)
+    assert below["estimated_x_b_error"] == pytest.approx(error(first), rel=1e-12)
     a, b = family["points"][1:3]
     middle = math.sqrt(a["stokes_number"] * b["stokes_number"])  # halfway in log St
-    assert limits.unsteady_error(middle, "paper", "rocking")["estimated_x_b_error"] == pytest.approx(
-        0.5 * (abs(a["models"]["paper"]["x_b_relative"]) + abs(b["models"]["paper"]["x_b_relative"])), rel=1e-12)
+    assert limits.unsteady_error(middle, "paper", "rocking", spin)["estimated_x_b_error"] == pytest.approx(
+        0.5 * (error(a) + error(b)), rel=1e-12)
 
 
 def test_the_estimate_follows_the_regime_and_before_a_run_takes_the_larger():
@@ -70,7 +76,8 @@ def test_the_estimate_follows_the_regime_and_before_a_run_takes_the_larger():
     rocking, runaway = (limits.unsteady_error(0.5, regime=r) for r in ("rocking", "runaway"))
     assert rocking["from_start"] == "release" and runaway["from_start"] == "runaway"
     assert rocking["estimated_x_b_error"] == rocking["by_start"]["release"]
-    assert limits.MEASURED_STOKES <= max(st for st, _ in json.loads(DATA_FILE.read_text())["families"]["release"]["paper"])
+    measured = json.loads(DATA_FILE.read_text())["families"]["release"]["paper"]["none"]
+    assert limits.MEASURED_STOKES <= max(st for st, _ in measured)
 
 
 def _fluid_with_stokes(stokes: float) -> float:
@@ -102,7 +109,14 @@ def test_a_device_past_the_limit_is_refused_or_flagged_and_past_the_measured_ran
     assert any("the largest measured" in str(w.message) for w in caught)
     unsteady = free.info["inertia"]["unsteady"]
     assert unsteady["stokes_number"] == pytest.approx(stokes, rel=1e-12)
-    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], full.DEFAULT_FRAME_TERMS, free.regime)
+    assert unsteady == limits.unsteady_error(unsteady["stokes_number"], full.DEFAULT_FRAME_TERMS, free.regime,
+                                             full.DEFAULT_FLUID_SPIN)
+    # a run states the error of its own model
+    paper = simulate(ap, start, 1e-3, limits=Limits(max_gap_reynolds=None, on_invalid="warn"), frame_terms="paper",
+                     fluid_spin="none")
+    stated = paper.info["inertia"]["unsteady"]
+    assert stated == limits.unsteady_error(stated["stokes_number"], "paper", paper.regime, "none")
+    assert stated["estimated_x_b_error"] != unsteady["estimated_x_b_error"]
 
 
 def test_scenes_take_the_limit_and_name_it_when_refused():
@@ -120,5 +134,6 @@ def test_a_rerun_gives_the_stored_numbers(stored):
     again = study.run_point(family, family.viscosities[0], log=lambda _: None)
     kept = stored["families"][0]["points"][0]
     for frame in study.FRAME_TERMS:
-        assert again["models"][frame]["x_b_relative"] == pytest.approx(
-            kept["models"][frame]["x_b_relative"], abs=kept["reference_error"] + 1e-9)
+        for spin in full.FLUID_SPIN:
+            assert again["models"][frame][spin]["x_b_relative"] == pytest.approx(
+                kept["models"][frame][spin]["x_b_relative"], abs=kept["reference_error"] + 1e-9)

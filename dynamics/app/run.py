@@ -65,9 +65,11 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if model.equations == "full":
         forces = _force_model(scene)
     elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != full.DEFAULT_FRAME_TERMS
-                                           or model.inertia != "none" or model.fluid_spin != "none"):
+                                           or model.inertia != "none"
+                                           or model.fluid_spin != full.DEFAULT_FLUID_SPIN):
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
-                                  ("model.fluid_spin", model.fluid_spin != "none"), ("model.frame_terms", True)) if v)
+                                  ("model.fluid_spin", model.fluid_spin != full.DEFAULT_FLUID_SPIN),
+                                  ("model.frame_terms", True)) if v)
         raise _refuse(key, "the reduced equations (2.11) are leading order: per unit length of an infinitely long "
                            "annulus, in Stokes flow, without the O(delta/a) frame terms; this needs "
                            "model.equations = 'full'")

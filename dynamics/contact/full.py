@@ -179,7 +179,8 @@ def _free_state(apparatus, contact: ContactParams, y) -> np.ndarray:
                      y[2], y[3], y[4]])
 
 
-def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: float, omega_b: float):
+def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: float, omega_b: float,
+           fluid_spin: str = full.DEFAULT_FLUID_SPIN):
     """Velocities just after a plastic impact at eps = eps* (module docstring).
 
     Parameters
@@ -190,13 +191,16 @@ def impact(apparatus, contact: ContactParams, chi: float, velocity, omega_a: flo
         r' = (x', z') before the impact (m/s).
     omega_a, omega_b : float
         Rates before (rad/s).
+    fluid_spin : str
+        The run's fluid spin in (2.4) (:data:`dynamics.equations.full.FLUID_SPIN`): the impulses act on the
+        inertia it gives.
 
     Returns
     -------
     (velocity, omega_a, omega_b, p_n, p_f)
         After the impact, and the normal and tangential impulses (N s).
     """
-    p = full.params_array(apparatus)
+    p = full.params_array(apparatus, fluid_spin=fluid_spin)
     eps = contact.kappa_star * apparatus.delta
     ex, ez = math.sin(chi), math.cos(chi)
     e_eps, e_chi = np.array([ex, ez]), np.array([ez, -ex])
@@ -305,8 +309,9 @@ class FullContactRun:
     """What the phases of one full-model contact run share."""
 
     def __init__(self, apparatus, force_model: KernelModel, contact: ContactParams, limits: Limits, rtol: float,
-                 frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none"):
+                 frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = full.DEFAULT_FLUID_SPIN):
         self.ap, self.contact, self.limits, self.rtol = apparatus, contact, limits, rtol
+        self.fluid_spin = fluid_spin
         self.p = full.params_array(apparatus, frame_terms, fluid_spin)
         self.model = full.model_arguments(force_model)
         self.functions = contact_functions(force_model)
@@ -368,7 +373,8 @@ class FullContactRun:
     def touch(self, y_free, phi: float) -> Phase:
         """The impact on touching, then :meth:`enter_contact`."""
         chi = phi - self.ap.alpha
-        velocity, omega_a, omega_b, _, _ = impact(self.ap, self.contact, chi, y_free[2:4], y_free[4], y_free[5])
+        velocity, omega_a, omega_b, _, _ = impact(self.ap, self.contact, chi, y_free[2:4], y_free[4], y_free[5],
+                                                  self.fluid_spin)
         eps = self.contact.kappa_star * self.ap.delta
         chi_dot = (math.cos(chi) * velocity[0] - math.sin(chi) * velocity[1]) / eps
         return self.enter_contact(np.array([chi, chi_dot, omega_a, omega_b, y_free[6]]))
@@ -410,7 +416,7 @@ class FullContactRun:
 def run_full_contact(apparatus, force_model: KernelModel, contact: ContactParams, initial, t_end: float, *,
                      limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                      max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
-                     frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> dict:
+                     frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> dict:
     """The full model with rough contact from ``initial`` (SI) over ``t_end`` seconds.
 
     Returns the fields of :func:`numerics.hybrid.run_phases` with times in

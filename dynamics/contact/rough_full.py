@@ -526,7 +526,7 @@ class RoughFullRun:
     """What the phases of one rough full-model run share: device, surfaces, laws, limits, tolerances."""
 
     def __init__(self, apparatus, force_model: KernelModel, rough: RoughContact, limits: Limits, rtol: float,
-                 frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none"):
+                 frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = full.DEFAULT_FLUID_SPIN):
         ap = apparatus
         self.ap, self.rough, self.limits, self.rtol = ap, rough, limits, rtol
         self.mean = rough.mean
@@ -779,7 +779,7 @@ class RoughFullRun:
 def run_rough_full(apparatus, force_model: KernelModel, rough: RoughContact, initial, t_end: float, *,
                    limits: Limits = Limits(), method: str = "radau", rtol: float = 1e-8, t_eval=None, steps=None,
                    max_steps: int = 2_000_000, max_switches: int = MAX_SWITCHES, progress=None,
-                   frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> dict:
+                   frame_terms: str = full.DEFAULT_FRAME_TERMS, fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> dict:
     """The full model on rough surfaces from ``initial`` (SI) over ``t_end`` seconds.
 
     Theta_a starts at 0, so the initial body angles are theta_a = theta_b = phi0.

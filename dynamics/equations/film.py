@@ -116,7 +116,7 @@ def void_scale(apparatus_or_annulus, n: int) -> float:
 
 def run_args(apparatus: Apparatus, film: TransportedFilm, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, frame_terms: str = full.DEFAULT_FRAME_TERMS,
-             fluid_spin: str = "none") -> tuple:
+             fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> tuple:
     """The ``args`` of :func:`rhs`, :func:`jacobian` and :func:`events`.
 
     (the motion's numbers, the film's data): the first packed as the full model's

@@ -74,6 +74,7 @@ from numerics.packed import pack, part, parts
 __all__ = [
     "CARTESIAN_BELOW",
     "CARTESIAN_EVENT_NAMES",
+    "DEFAULT_FLUID_SPIN",
     "DEFAULT_FRAME_TERMS",
     "EVENT_NAMES",
     "FLUID_SPIN",
@@ -131,8 +132,11 @@ DEFAULT_FRAME_TERMS = "quasi-steady"
 #: The fluid's own angular momentum in (2.4): "none" drops it, as the paper writes (2.4); "couette" adds that of
 #: the concentric Couette flow between the walls, m_f (a^2 Omega_a + b^2 Omega_b)/2, which a fluid turning with
 #: the cylinders carries (against the coupled Navier-Stokes runs: docs/stokes_limit.md); "eccentric" that of the
-#: Stokes flow at the run's eccentricity (:func:`spin_state`), which tends to "couette" as kappa -> 0.
+#: Stokes flow at the run's eccentricity (:func:`spin_state`), which tends to "couette" as kappa -> 0. Against
+#: the Navier-Stokes runs "eccentric" is the closest on the whole and never the farthest
+#: (docs/site/equations_of_motion.md): it is the default, :data:`DEFAULT_FLUID_SPIN`.
 FLUID_SPIN = ("none", "couette", "eccentric")
+DEFAULT_FLUID_SPIN = "eccentric"
 
 
 def check_frame_terms(frame_terms: str) -> str:
@@ -143,7 +147,8 @@ def check_frame_terms(frame_terms: str) -> str:
     return frame_terms
 
 
-def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
+def params_array(apparatus, frame_terms: str = DEFAULT_FRAME_TERMS,
+                 fluid_spin: str = DEFAULT_FLUID_SPIN) -> np.ndarray:
     """The numbers the jitted right-hand side needs, from an :class:`~dynamics.apparatus.Apparatus`."""
     check_frame_terms(frame_terms)
     if fluid_spin not in FLUID_SPIN:
@@ -569,7 +574,7 @@ def polar_events(t, y, args):
 
 def run_args(apparatus, force_model: KernelModel, *, gap_floor: float, max_reynolds: float = math.inf,
              max_turns: float = math.inf, x_b0: float = 0.0, kappa_star: float = 1.0,
-             frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = "none") -> np.ndarray:
+             frame_terms: str = DEFAULT_FRAME_TERMS, fluid_spin: str = DEFAULT_FLUID_SPIN) -> np.ndarray:
     """The ``args`` of ``rhs`` (:func:`model_functions`), ``jacobian`` and :func:`events` for a run.
 
     Its parts (:func:`numerics.packed.part`) :data:`PARAMETERS`, :data:`MODEL` (the force model's data),

@@ -77,14 +77,14 @@ def _two_digits_down(x: float) -> float:
 
 #: The Stokes number St = delta^2 / (nu tau) measures the unsteady inertia of the flow in the gap, which every
 #: ODE model leaves out (it takes the flow as quasi-steady). Measured against the coupled Navier-Stokes run
-#: (docs/stokes_limit.md, validation/stokes_limit.py): the error of x_b along a rocking release grows from
-#: 1.8% at St = 0.075 to 4.9% at 7.5, and a runaway's is 7.5-8.4% over St = 0.019-0.96. It does not vanish with
-#: St: (2.4) drops the fluid's own angular momentum, whose share of the device's (7.6% for the aluminium
-#: cylinder) the runaway's error matches. MEASURED_STOKES is the largest St measured (rounded down to two
-#: digits): beyond it the stated error is held at the last measured value, and a run says so. A device's St is
-#: fixed by its fluid (St goes as 1/nu^2): a limit set in ``max_stokes_number`` is judged before a run. None by
-#: default: the models' own comparisons (the reduced model's limit, the paper's figures at its oils) run at any St.
-MEASURED_STOKES = _two_digits_down(max(st for st, _ in _stokes_study()["families"]["release"]["paper"]))
+#: (docs/stokes_limit.md, validation/stokes_limit.py): with the default frame terms and fluid spin the error of
+#: x_b along a rocking release grows from 0.16% at St = 0.075 to 3.3% at 7.5, and a runaway's is 0.6-0.7% over
+#: St = 0.019-0.96. Without the fluid's spin ((2.4) as printed) it does not vanish with St: 1.8% to 4.4% and
+#: 6.6-8.2%, the runaway's the spin's share of the device's moment of inertia (7.6%). MEASURED_STOKES is the
+#: largest St measured (rounded down to two digits): beyond it the stated error is held at the last measured
+#: value, and a run says so. A device's St is fixed by its fluid (St goes as 1/nu^2): a limit set in
+#: ``max_stokes_number`` is judged before a run. None by default: the models' own comparisons (the reduced model's limit, the paper's figures at its oils) run at any St.
+MEASURED_STOKES = _two_digits_down(max(st for st, _ in _stokes_study()["families"]["release"]["paper"]["none"]))
 #: Rocking turns the outer cylinder only slowly; a runaway is stopped after this many turns.
 MAX_TURNS = 100.0
 ON_INVALID = ("stop", "warn")
@@ -134,20 +134,20 @@ class Limits:
 
 
 def unsteady_error(stokes_number: float, frame_terms: str = full.DEFAULT_FRAME_TERMS,
-                   regime: str | None = None) -> dict:
+                   regime: str | None = None, fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> dict:
     """The measured relative error of x_b of the quasi-steady models at ``stokes_number``, and what it rests on.
 
     Measured for two starts, a rocking release and a runaway, with the full equations, the exact Stokes
-    forces and ``frame_terms``, at several St (``dynamics/data/stokes_error.json``, from
-    ``validation.stokes_limit``): interpolated linearly in log St between them, the nearest measured value
-    outside them (the error tends to a floor at small St). With the run's ``regime`` the estimate is that of
+    forces, ``frame_terms`` and ``fluid_spin`` (an error below the reference's own is stated as that), at
+    several St (``dynamics/data/stokes_error.json``, from ``validation.stokes_limit``): interpolated linearly
+    in log St between them, the nearest measured value outside them (the error tends to a floor at small St). With the run's ``regime`` the estimate is that of
     the start of the same kind (a runaway's, else the release's); without it (before a run), the larger.
     ``measured_to_stokes_number``: the largest St measured for that start; beyond it the value is held.
     """
     study = _stokes_study()
     by_start, reach = {}, {}
     for label, family in study["families"].items():
-        st, error = np.array(family[frame_terms]).T
+        st, error = np.array(family[frame_terms][fluid_spin]).T
         by_start[label] = float(np.interp(math.log(stokes_number), np.log(st), error))
         reach[label] = float(st[-1])
     start = max(by_start, key=by_start.get) if regime is None else "runaway" if regime == "runaway" else "release"
@@ -280,7 +280,7 @@ def _frame_force_magnitudes(p, eps, eps_dot, chi_dot, omega_a, omega_b):
 
 
 def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_terms: str = full.DEFAULT_FRAME_TERMS,
-                   regime: str | None = None) -> dict:
+                   regime: str | None = None, fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> dict:
     """How far a run's quasi-steady Stokes forces can be trusted, from its SI columns.
 
     Returns, each with the time at which it occurred: the largest reduced Reynolds
@@ -294,7 +294,7 @@ def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_term
     (:func:`frame_force_over_weight`); the squeeze Reynolds number
     |eps'| delta / nu, which the estimate does not cover; and the Stokes number
     delta^2/(nu tau) of the unsteady inertia no steady solve sees, with the
-    error of x_b it implies for ``frame_terms`` and the run's ``regime`` (``unsteady``:
+    error of x_b it implies for ``frame_terms``, ``fluid_spin`` and the run's ``regime`` (``unsteady``:
     :func:`unsteady_error`). With
     ``corrected`` (forces that carry the first inertial correction), also
     ``corrected_forces``: the largest estimated error those forces leave
@@ -324,7 +324,7 @@ def inertia_report(apparatus, columns: dict, corrected: bool = False, frame_term
               "max_frame_force_over_weight": max_frame, "t_at_max_frame_force": t_frame,
               "max_squeeze_reynolds": float(np.abs(columns["kappa_dot"]).max(initial=0.0) * ap.delta**2 / ap.nu),
               "stokes_number": ap.delta**2 / (ap.nu * ap.tau),
-              "unsteady": unsteady_error(ap.delta**2 / (ap.nu * ap.tau), frame_terms, regime)}
+              "unsteady": unsteady_error(ap.delta**2 / (ap.nu * ap.tau), frame_terms, regime, fluid_spin)}
     if corrected:
         from lubrication.inertia import CORRECTED_MEASURED_TO, corrected_error_estimate
 

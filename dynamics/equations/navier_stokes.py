@@ -39,9 +39,10 @@ with the fluid's density taken to zero they become the full ODE model with the S
 forces; the energy balance of :func:`energy_columns` with
 :func:`lubrication.unsteady.energy.flow_energy`.
 
-What the ODE models differ in: (2.4) drops the fluid's own angular momentum and the
-end fluid's moment of inertia, and (2.1)-(2.2) close the fluid's inertia with m_eff
-and the ``frame_terms`` choice; here nothing is closed.
+What the ODE models differ in: the fluid's own angular momentum in (2.4) is a closure
+(``fluid_spin``: by default that of the Stokes flow at the eccentricity; none as printed), the
+end fluid's moment of inertia is left out, and (2.1)-(2.2) close the fluid's inertia with
+m_eff and the ``frame_terms`` choice; here nothing is closed.
 """
 
 from __future__ import annotations

@@ -201,8 +201,8 @@ class RunawayEstimates(NamedTuple):
     model: float  # (1 - f) a_0
 
 
-def runaway_estimates(apparatus, samples: int = 4096,
-                      frame_terms: str = full.DEFAULT_FRAME_TERMS) -> RunawayEstimates:
+def runaway_estimates(apparatus, samples: int = 4096, frame_terms: str = full.DEFAULT_FRAME_TERMS,
+                      fluid_spin: str = full.DEFAULT_FLUID_SPIN) -> RunawayEstimates:
     """The mean runaway accelerations of the full model for ``apparatus`` (:class:`RunawayEstimates`).
 
     Derived in ``validation.dynamics_checks``'s docstring: with the fluid's dissipation as a
@@ -210,7 +210,12 @@ def runaway_estimates(apparatus, samples: int = 4096,
     of centres, less the share f of the work of gravity lost in the film. The centrifugal load that
     closes the gap, and so f, carries the centripetal mass of ``frame_terms``: m_eff as (2.2) is
     printed ("paper"), m'_a with the quasi-steady frame terms (the fluid co-rotates, so their frame
-    rate is chi').
+    rate is chi'). The fluid's spin of ``fluid_spin`` adds its angular momentum in co-rotation,
+    I_s Omega, to the moment of inertia about the contact: I_s = m_f (a^2 + b^2)/2 with "couette",
+    and with "eccentric" J_a + J_b + K delta^2 = m_f (a^2 + b^2)/2 - (m_eff - m'_a) delta^2 at contact,
+    whatever the shares the walls carry (:func:`dynamics.equations.full.spin_state`: they cancel
+    when Omega_a = Omega_b = chi'). f is that of (2.4) without the spin: the spin changes it by
+    the spin's share of the inertia, a relative change of a per cent that is itself small.
 
     ``samples`` equispaced points in chi evaluate the averages behind f, which
     are periodic and smooth, so the rule converges geometrically.
@@ -219,10 +224,13 @@ def runaway_estimates(apparatus, samples: int = 4096,
     g_sin = ap.g * math.sin(ap.alpha)
     delta, b = ap.delta, ap.b
     i_a = 0.5 * ap.m_a * ap.a**2
+    spin = {"none": 0.0, "couette": 0.5 * ap.m_f * (ap.a**2 + b**2),
+            "eccentric": 0.5 * ap.m_f * (ap.a**2 + b**2) - (ap.m_eff - ap.m_a_reduced) * delta**2}[fluid_spin]
     i_0 = i_a + (ap.M + ap.m_b) * b**2 + ap.m_eff * delta**2
     lever = ap.m_a_reduced * b  # m'_a b
     swing = 2.0 * lever * delta  # B
-    mean_sqrt = 2.0 / math.pi * math.sqrt(i_0 + swing) * ellipe(2.0 * swing / (i_0 + swing))
+    rolling = i_0 + spin  # the moment of inertia about the contact, less B's swing
+    mean_sqrt = 2.0 / math.pi * math.sqrt(rolling + swing) * ellipe(2.0 * swing / (rolling + swing))
     lossless = ap.M * g_sin * b**2 / mean_sqrt**2
     chi = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
     inertia = i_0 + swing * np.cos(chi)

@@ -380,8 +380,8 @@ _NOT_NAVIER_STOKES = (
     ("frame_terms", full.DEFAULT_FRAME_TERMS, "frame_terms closes the ODE models' fluid inertia, which the "
                                              "Navier-Stokes flow carries itself: leave it "
                                              f"{full.DEFAULT_FRAME_TERMS!r}"),
-    ("fluid_spin", "none", "the fluid's spin is the full equations'; the Navier-Stokes flow carries it itself: leave "
-                           "it 'none'"),
+    ("fluid_spin", full.DEFAULT_FLUID_SPIN, "the fluid's spin is the full equations'; the Navier-Stokes flow carries "
+                                           f"it itself: leave it {full.DEFAULT_FLUID_SPIN!r}"),
     ("inertia", "none", "the first inertial correction is the ODE models'; the Navier-Stokes flow has all of the "
                         "fluid's inertia: leave it 'none'"),
     ("ends", "infinite", "the Navier-Stokes flow is plane, per unit length of an infinitely long annulus: leave it "

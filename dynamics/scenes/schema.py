@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from dynamics.apparatus import DENSITY, PRESETS, Apparatus
 from dynamics.contact.laws import CONTACT_LAWS, FRICTION_LAWS, HEIGHTS
 from dynamics.contact.roughness import SPECTRA
-from dynamics.equations.full import DEFAULT_FRAME_TERMS, FLUID_SPIN, FRAME_TERMS
+from dynamics.equations.full import DEFAULT_FLUID_SPIN, DEFAULT_FRAME_TERMS, FLUID_SPIN, FRAME_TERMS
 from dynamics.equations.limits import Limits
 from dynamics.equations.reduced import ReducedParams
 from dynamics.initial import Initial
@@ -124,11 +124,12 @@ class Model:
                                                      "the centripetal and Coriolis terms, as a fluid turning with the "
                                                      "line of centres requires (the closer to the Navier-Stokes runs); "
                                                      "'paper' is (2.1)-(2.2) as printed", choices=FRAME_TERMS)
-    fluid_spin: str = key("none", help="full equations: 'none' is (2.4) as printed, which drops the fluid's own "
-                                       "angular momentum; 'couette' adds that of the concentric Couette flow, "
-                                       "m_f (a^2 Omega_a + b^2 Omega_b)/2; 'eccentric' that of the Stokes flow at "
-                                       "the eccentricity, the closest to the Navier-Stokes runs "
-                                       "(docs/site/equations_of_motion.md)", choices=FLUID_SPIN)
+    fluid_spin: str = key(DEFAULT_FLUID_SPIN, help="full equations: 'eccentric' adds to (2.4) the fluid's own "
+                                                   "angular momentum, that of the Stokes flow at the eccentricity, "
+                                                   "the closest to the Navier-Stokes runs "
+                                                   "(docs/site/equations_of_motion.md); 'couette' that of the "
+                                                   "concentric Couette flow, m_f (a^2 Omega_a + b^2 Omega_b)/2; "
+                                                   "'none' is (2.4) as printed, without it", choices=FLUID_SPIN)
 
     def __post_init__(self):
         check_fields(self)

@@ -87,8 +87,8 @@ def problem(scene) -> Problem | None:
     """
     model, run, initial = scene.model, scene.run, scene.initial
     if (model.equations != "reduced" or model.forces == "auto" or model.ends != "infinite"
-            or model.frame_terms != full.DEFAULT_FRAME_TERMS or model.fluid_spin != "none" or scene.contact is not None
-            or scene.cavitation is not None
+            or model.frame_terms != full.DEFAULT_FRAME_TERMS or model.fluid_spin != full.DEFAULT_FLUID_SPIN
+            or scene.contact is not None or scene.cavitation is not None
             or run.output_interval is not None):
         return None
     limits = run.limits
