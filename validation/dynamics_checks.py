@@ -363,11 +363,11 @@ def full_runaway(alpha_deg: float, t_end: float, start=Initial(0.5, 0.5), fluid_
 
 def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
     est = steep["estimates"]
-    tag = f"aluminium at {steep['alpha_deg']:g} deg (s = {steep['apparatus'].s:.2f}), fluid spin {steep['fluid_spin']}"
+    tag = f"aluminium at {steep['alpha_deg']:g} deg (s = {steep['apparatus'].s:.2f})"
     checks = [
         relative(f"{tag}: runaway acceleration against the co-rotating (1 - f) a_0", steep["acceleration"],
-                 est.model, 1e-3, "quadratic fit to X_b over the second half; corrections O(g/(delta Omega^2)) "
-                 "to f, a fraction of f = 0.6%"),
+                 est.model, 1e-3, f"fluid spin {steep['fluid_spin']}; quadratic fit to X_b over the second half; "
+                 "corrections O(g/(delta Omega^2)) to f, a fraction of f = 0.6%"),
         relative(f"{tag}: share of the work of gravity lost in the film, second half", steep["lost_fraction"],
                  est.dissipated_fraction, 0.03, "f of the module docstring, approached from below as "
                  "g/(delta Omega^2) -> 0: over 2.5-5 s at 30 deg 2.1% short with the quasi-steady frame terms, "
@@ -378,7 +378,7 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
     ]
     est = paper_slope["estimates"]
     a = paper_slope["acceleration"]
-    tag = f"aluminium at {paper_slope['alpha_deg']:g} deg, fluid spin {paper_slope['fluid_spin']}"
+    tag = f"aluminium at {paper_slope['alpha_deg']:g} deg"
     # the other estimates differ from each other by a few per cent: reported, not judged
     for name, value, why in (("paper's (3.11) M g sin(alpha)/(M + m_b + m_a/2)", est.paper, "a = b, delta = 0"),
                              ("rigid body M g sin(alpha) b^2/(m_a a^2/2 + (M + m_b) b^2)", est.rigid,
@@ -387,7 +387,8 @@ def full_runaway_checks(steep: dict, paper_slope: dict) -> list[Check]:
         checks.append(Finding(f"{tag}: runaway acceleration estimate, {name} (m/s^2)", value,
                               f"{why}; the model's is {a:.4g} m/s^2, {a / value - 1:+.1%}"))
     checks.append(relative(f"{tag}: runaway acceleration against the co-rotating (1 - f) a_0", a, est.model, 0.007,
-                           "still approaching: g/(delta Omega^2) ~ 0.1 over the fit; a_0 with the fluid's spin in "
+                           f"fluid spin {paper_slope['fluid_spin']}; still approaching: g/(delta Omega^2) ~ 0.1 over "
+                           "the fit; a_0 with the fluid's spin in "
                            "co-rotation, m_f (a^2 + b^2)/2 - (m_eff - m'_a) delta^2; f = 1.4% without the spin"))
     return checks
 

@@ -212,7 +212,9 @@ def _acceleration_verdict(f: Found) -> tuple[bool, str]:
     al = _aluminium()
     factor = 2.0 * (al.M + al.m_b + 0.5 * al.m_a) / al.M
     return False, (f"(3.11) takes the inner cylinder's moment of inertia about the contact point as m_a b^2/2 "
-                   f"(it is m_a a^2/2, a/b = {al.a / al.b:.2f}) and leaves out the eccentric mass m_eff delta^2 "
+                   f"(it is m_a a^2/2, a/b = {al.a / al.b:.2f}) and leaves out the eccentric mass m_eff delta^2, "
+                   "the fluid's own spin (which the full equations carry by default, and the Navier-Stokes runs "
+                   "confirm: docs/stokes_limit.md) "
                    f"and the film's shear loss in each turn, so the model is {a / paper - 1:+.1%} off it. The "
                    f"observed law is {observed / a - 1:+.1%} from the model and {observed / paper - 1:+.1%} from "
                    f"(3.11), which the text calls a match (2(M + m_b + m_a/2)/M = {factor:.2f}, not 3).")
