@@ -23,17 +23,21 @@ The packed data. ``data[:HEADER]`` says where each block starts (0: absent):
   (:mod:`lubrication.finite_length`): L/a, the table's two coefficient arrays and
   its shape;
 * the inertia block of the first inertial correction (:mod:`lubrication.inertia`):
-  the fluid density, the kappa and delta/a nodes and the table.
+  the fluid density, the kappa and delta/a nodes and the table;
+* the end faces' films (:func:`end_face_forces`): the sum over the two ends of
+  1/h, h the axial clearance between the inner cylinder's flat end face and the
+  outer cylinder's end cap (0: no end faces).
 
 A model whose forces are linear in (eps', W_a, W_b), its five resistance
 coefficients a compiled function ``resistance(a, delta, mu, kappa, omk)``, gets its
-kernel from :func:`lubrication.registry.linear_kernel`; the two compositions of the registry, the
-finite-length factors and the first inertial correction, act on those coefficients
+kernel from :func:`lubrication.registry.linear_kernel`; the compositions of the registry, the
+finite-length factors, the first inertial correction and the end faces, act on those coefficients
 (:mod:`lubrication.registry`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -44,13 +48,14 @@ from numerics.jit import jit, sources_hash
 
 from .geometry import Annulus, Fluid, FluidForces, Motion
 
-__all__ = ["HEADER", "SOURCES_HASH", "KernelModel", "kernel_name", "linear", "model_block"]
+__all__ = ["HEADER", "SOURCES_HASH", "KernelModel", "end_face_forces", "kernel_name", "linear", "model_block"]
 
 # The header: where each block starts and the scalars of the compositions.
 MODEL, MODEL_SIZE = 0, 1
 ENDS, LENGTH_OVER_A, ZETA_MIN, X0, ROWS, COLS = range(2, 8)
 INERTIA, RHO, N_KAPPA, N_DELTA, N_COLUMNS = range(8, 13)
-HEADER = 13
+END_FACES = 13
+HEADER = 14
 
 
 @dataclass(frozen=True)
@@ -75,6 +80,9 @@ class KernelModel:
         gap opens into end regions; None for an infinitely long one.
     inertia : tuple, optional
         (rho, kappa nodes, delta/a nodes, table) of the first inertial correction; None without it.
+    end_gap : float, optional
+        The axial clearance (m) between each flat end face of the inner cylinder and the outer
+        cylinder's end cap, both ends alike (:func:`end_face_forces`); None: no end faces.
     smooth : bool
         Whether the forces are smooth in the state (a cavitating film's are only piecewise
         smooth, which the equations of motion take into account).
@@ -88,6 +96,7 @@ class KernelModel:
     block: np.ndarray = field(default_factory=lambda: np.empty(0))
     length_table: tuple | None = None
     inertia: tuple | None = None
+    end_gap: float | None = None
     smooth: bool = True
     options: dict = field(default_factory=dict)
 
@@ -123,6 +132,8 @@ class KernelModel:
             append(table)
             header[RHO], header[N_KAPPA], header[N_DELTA] = rho, np.size(kappa_nodes), np.size(delta_nodes)
             header[N_COLUMNS] = np.shape(table)[2]
+        if self.end_gap is not None:
+            header[END_FACES] = 2.0 / self.end_gap
         return np.concatenate(parts)
 
     def forces(self, annulus: Annulus, motion: Motion, fluid: Fluid) -> FluidForces:
@@ -148,7 +159,26 @@ def linear(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
     f_eps = length * ends[0] * r[0] * eps_dot + INERTIAL_F_EPS(data, a, b, length, kappa, w_a, w_b)  # noqa: F821
     f_chi = length * (ends[1] * r[1] * w_a + ends[3] * r[3] * w_b)
     t_a = length * (ends[2] * r[2] * w_a + ends[4] * r[4] * w_b)
-    return f_eps, f_chi, t_a
+    faces = end_face_forces(data[END_FACES], a, mu, kappa * (b - a), eps_dot, w_a, w_b)
+    return f_eps + faces[0], f_chi + faces[1], t_a + faces[2]
+
+
+@jit(inline="always")
+def end_face_forces(inverse_gaps, a, mu, eps, eps_dot, w_a, w_b):
+    """(f_eps, f_chi, T_a) of the films between the inner cylinder's flat end faces and the end caps.
+
+    Each face, a disc of radius a centred at r = eps e_eps, shears a film of thickness h
+    against the cap, which turns with the outer cylinder about its axis: plane Couette flow,
+    stress -mu (v_A - v_cap)/h, where v_A - v_cap = r' + Omega_a J (x - r) - Omega_b J x and J
+    turns a vector a quarter turn the way chi grows. Over the disc, with r' = eps' e_eps +
+    eps chi' e_chi and J r = eps e_chi, the force is -(mu pi a^2/h)(eps' e_eps - eps W_b e_chi)
+    and the torque about A -(mu pi a^4/(2 h))(W_a - W_b). ``inverse_gaps`` = the sum of 1/h over
+    the ends (1/m); 0 gives zeros. Lubrication of the faces' films: h << a, and h fixed (the inner
+    cylinder's axial position is not a state). They dissipate c (eps'^2 + eps^2 W_b^2 +
+    (a^2/2)(W_a - W_b)^2) >= 0, c = mu pi a^2 sum(1/h).
+    """
+    c = mu * math.pi * a * a * inverse_gaps
+    return -c * eps_dot, c * eps * w_b, -0.5 * c * a * a * (w_a - w_b)
 
 
 #: The sources compiled into every kernel of this layer: the package's own.

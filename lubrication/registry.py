@@ -17,8 +17,10 @@ once: the annulus' ends (``ends = "open"``: the finite-length factors of
 :mod:`lubrication.finite_length` on a linear model's coefficients, or the
 Reynolds equation on (theta, z) for one instant), the first inertial correction
 (``inertia = "first-order"``: :mod:`lubrication.inertia`, tabulated for plane
-Stokes flow, so on linear models with infinite ends), and cavitation (a film
-that ruptures: the Reynolds solver's).
+Stokes flow, so on linear models with infinite ends), cavitation (a film
+that ruptures: the Reynolds solver's), and the end faces (``end_gap``: the films
+between the inner cylinder's flat ends and the end caps,
+:func:`lubrication.kernels.end_face_forces`, on linear models).
 """
 
 from __future__ import annotations
@@ -97,6 +99,13 @@ def _cavitation_rule(spec: ForceModelSpec, options: Mapping, trajectory: bool) -
     return ""
 
 
+def _end_faces_rule(spec: ForceModelSpec, options: Mapping, trajectory: bool) -> str:
+    if spec.linear:
+        return ""
+    return ("the end faces' films add to the linear models' coefficients "
+            f"({', '.join(n for n in names() if get(n).linear)}), not to the {spec.name} model's")
+
+
 _PRESSURE = {"dimension": "[pressure]", "unit": "Pa", "example": "1 atm"}
 
 #: The compositions, each stated once (module docstring).
@@ -120,6 +129,11 @@ COMPOSITIONS = MappingProxyType({
          "p_ref": Key("reference pressure: at the widest gap, or of the end regions with ends 'open' (absolute)",
                       low=0.0, bounds="()", **_PRESSURE)},
         "none", _cavitation_rule),
+    "end_faces": Composition(
+        {"end_gap": Key("axial clearance between each flat end face of the inner cylinder and the outer "
+                        "cylinder's end cap: the faces' films add drag and torque ('none': no end faces)",
+                        dimension="[length]", unit="m", low=0.0, bounds="()", example="0.5 mm", none="none")},
+        None, _end_faces_rule),
 })
 
 _MODELS: dict[str, ForceModelSpec] = {}
@@ -228,7 +242,7 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "s
         default), "closed-form" (2.5)-(2.7), "reynolds", "stokes" (finite elements), ...
     **options
         The model's own options and the compositions' (:data:`COMPOSITIONS`: ``ends``,
-        ``n_axial``, ``inertia``, ``cavitation``, ``p_cav``, ``p_ref``), each checked against
+        ``n_axial``, ``inertia``, ``cavitation``, ``p_cav``, ``p_ref``, ``end_gap``), each checked against
         its key and the rules; the same options as ``snail forces``.
 
     Returns
@@ -319,6 +333,10 @@ def kernel_model(name: str, *, length_over_a: float | None = None, rho: float | 
             raise ValueError("inertia = 'first-order' needs the fluid density rho (kg/m^3)")
         rho = check_range("rho", rho, 0.0, math.inf, low_open=True, unit="kg/m^3")
         inertia_table = (rho, KAPPA_NODES, DELTA_NODES, TABLE)
+    end_gap = options.get("end_gap")
+    if end_gap is not None:
+        label += "+end-faces"
     return KernelModel(label, kernel, kernel_name(spec.name, kernel),
                        block=np.empty(0) if block is None else np.asarray(block, dtype=float),
-                       length_table=length_table, inertia=inertia_table, smooth=smooth, options=dict(options))
+                       length_table=length_table, inertia=inertia_table, end_gap=end_gap, smooth=smooth,
+                       options=dict(options))

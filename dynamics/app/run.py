@@ -65,9 +65,10 @@ def run_scene(scene: Scene, *, method: str = "radau", progress=None) -> Trajecto
     if model.equations == "full":
         forces = _force_model(scene)
     elif model.equations == "reduced" and (model.ends != "infinite" or model.frame_terms != full.DEFAULT_FRAME_TERMS
-                                           or model.inertia != "none"
+                                           or model.inertia != "none" or model.end_gap is not None
                                            or model.fluid_spin != full.DEFAULT_FLUID_SPIN):
         key = next(k for k, v in (("model.ends", model.ends != "infinite"), ("model.inertia", model.inertia != "none"),
+                                  ("model.end_gap", model.end_gap is not None),
                                   ("model.fluid_spin", model.fluid_spin != full.DEFAULT_FLUID_SPIN),
                                   ("model.frame_terms", True)) if v)
         raise _refuse(key, "the reduced equations (2.11) are leading order: per unit length of an infinitely long "
@@ -130,7 +131,8 @@ def _contact(scene: Scene) -> ContactParams | RoughContact:
 
 #: The scene key of each option of the force-model registry (:mod:`lubrication.registry`).
 _SCENE_KEYS = {"n": "model.n", "grid": "model.grid", "ends": "model.ends", "inertia": "model.inertia",
-               "cavitation": "cavitation.model", "p_cav": "cavitation.p_cav", "p_ref": "cavitation.p_ref"}
+               "end_gap": "model.end_gap", "cavitation": "cavitation.model", "p_cav": "cavitation.p_cav",
+               "p_ref": "cavitation.p_ref"}
 
 
 def _force_model(scene: Scene):
@@ -143,6 +145,8 @@ def _force_model(scene: Scene):
         options["ends"] = model.ends
     if model.inertia != "none":
         options["inertia"] = model.inertia
+    if model.end_gap is not None:
+        options["end_gap"] = model.end_gap
     if scene.cavitation is not None:
         options.update(cavitation=scene.cavitation.model, p_cav=scene.cavitation.p_cav, p_ref=scene.cavitation.p_ref)
     try:

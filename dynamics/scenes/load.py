@@ -386,6 +386,7 @@ _NOT_NAVIER_STOKES = (
                         "fluid's inertia: leave it 'none'"),
     ("ends", "infinite", "the Navier-Stokes flow is plane, per unit length of an infinitely long annulus: leave it "
                          "'infinite'"),
+    ("end_gap", None, "the Navier-Stokes flow is plane, without end faces: leave it 'none'"),
 )
 
 

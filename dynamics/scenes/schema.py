@@ -120,6 +120,10 @@ class Model:
                                  "into end regions at z = +-L/2 (finite-length factors on the linear models)",
                             choices=("infinite", "open"))
     inertia: str = _registered("none", registry.option_keys(compositions_only=True)["inertia"])
+    end_gap: float | None = _registered(None, registry.option_keys(compositions_only=True)["end_gap"],
+                                        help="full equations: axial clearance between each flat end face of the "
+                                             "inner cylinder and the end cap; the faces' films add drag and torque "
+                                             "(linear force models; 'none': no end faces)")
     frame_terms: str = key(DEFAULT_FRAME_TERMS, help="full equations: 'quasi-steady' carries m'_a, not m_eff, on "
                                                      "the centripetal and Coriolis terms, as a fluid turning with the "
                                                      "line of centres requires (the closer to the Navier-Stokes runs); "
