@@ -364,7 +364,7 @@ def inertia_warning(inertia: dict) -> str:
             if beyond else "")
     flow = (f"the quasi-steady flow (Stokes number {unsteady['stokes_number']:.3g}) may misplace x_b by "
             f"{_percent(unsteady['estimated_x_b_error'])} within {unsteady['horizon']} (measured on a {kind}{past}: "
-            "docs/stokes_limit.md); equations = 'navier-stokes' has neither that nor (2.4)'s missing fluid spin")
+            "docs/stokes_limit.md); equations = 'navier-stokes' solves the unsteady flow instead")
     forces = _force_warning(inertia)
     return f"{forces}; {flow}" if forces else flow
 
