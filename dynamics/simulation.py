@@ -41,7 +41,7 @@ from dynamics.initial import Initial
 from dynamics.trajectory import Recorder, Trajectory, event_names
 from lubrication.film_transport import TransportedFilm
 from lubrication.geometry import check_range
-from lubrication.kernels import KernelModel
+from lubrication.kernels import KernelModel, check_end_gap
 from lubrication.registry import kernel_model
 from numerics.hybrid import run_phases
 from numerics.integrate import METHODS, integrate
@@ -203,6 +203,8 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
         raise ValueError(msg)
     model = (None if equations != "full" or film else forces if isinstance(forces, KernelModel)
              else kernel_model(forces))
+    if model is not None:  # the full equations, whose system is an Apparatus
+        check_end_gap(model.end_gap, system.a)
     past_stokes = _check_stokes(system, limits, equations, frame_terms, fluid_spin)
     bar = _Bar(t_end, unit) if progress is True else None
     run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms,

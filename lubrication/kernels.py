@@ -48,7 +48,8 @@ from numerics.jit import jit, sources_hash
 
 from .geometry import Annulus, Fluid, FluidForces, Motion
 
-__all__ = ["HEADER", "SOURCES_HASH", "KernelModel", "end_face_forces", "kernel_name", "linear", "model_block"]
+__all__ = ["HEADER", "MAX_END_GAP_OVER_A", "SOURCES_HASH", "KernelModel", "check_end_gap", "end_face_forces",
+           "kernel_name", "linear", "model_block"]
 
 # The header: where each block starts and the scalars of the compositions.
 MODEL, MODEL_SIZE = 0, 1
@@ -56,6 +57,9 @@ ENDS, LENGTH_OVER_A, ZETA_MIN, X0, ROWS, COLS = range(2, 8)
 INERTIA, RHO, N_KAPPA, N_DELTA, N_COLUMNS = range(8, 13)
 END_FACES = 13
 HEADER = 14
+#: The largest end clearance over the inner radius taken: the faces' films are lubrication films, in error
+#: by O(h/a) at the discs' rims.
+MAX_END_GAP_OVER_A = 0.25
 
 
 @dataclass(frozen=True)
@@ -161,6 +165,14 @@ def linear(data, a, b, mu, length, kappa, omk, eps_dot, w_a, w_b):
     t_a = length * (ends[2] * r[2] * w_a + ends[4] * r[4] * w_b)
     faces = end_face_forces(data[END_FACES], a, mu, kappa * (b - a), eps_dot, w_a, w_b)
     return f_eps + faces[0], f_chi + faces[1], t_a + faces[2]
+
+
+def check_end_gap(end_gap: float | None, a: float) -> None:
+    """ValueError naming ``end_gap`` where it exceeds MAX_END_GAP_OVER_A times the inner radius ``a``."""
+    if end_gap is not None and end_gap > MAX_END_GAP_OVER_A * a:
+        msg = (f"end_gap: the end faces' films are lubrication films, in error by O(h/a): at most "
+               f"{MAX_END_GAP_OVER_A:g} a = {MAX_END_GAP_OVER_A * a:g} m, got {end_gap!r} m")
+        raise ValueError(msg)
 
 
 @jit(inline="always")

@@ -41,7 +41,7 @@ from .finite_length import end_factors, factor_table
 from .geometry import Annulus, Fluid, FluidForces, Motion, Resistance, check_range
 from .inertia import inertial_f_eps
 from .inertia_table import DELTA_NODES, KAPPA_NODES, TABLE
-from .kernels import SOURCES_HASH, KernelModel, kernel_name, linear
+from .kernels import SOURCES_HASH, KernelModel, check_end_gap, kernel_name, linear
 from .spec import ForceModelSpec
 
 __all__ = ["COMPOSITIONS", "Composition", "ForceModelSpec", "check_options", "fluid_forces", "linear_kernel", "get", "kernel_model", "names",
@@ -260,6 +260,7 @@ def fluid_forces(annulus: Annulus, motion: Motion, fluid: Fluid, model: str = "s
     options = _checked(spec, options, trajectory=False)
     if spec.check is not None:
         spec.check(annulus)
+    check_end_gap(options.get("end_gap"), annulus.a)
     if spec.linear:
         forces = kernel_model(spec.name, length_over_a=annulus.length / annulus.a, rho=fluid.rho,
                               **options).forces(annulus, motion, fluid)

@@ -86,6 +86,13 @@ def test_only_the_linear_models_take_end_faces_and_scenes_name_the_key():
         fluid_forces(Annulus(A, B, 0.5 * (B - A), LENGTH), Motion(omega_a=1.0), FLUID, "reynolds", end_gap=1e-3)
     with pytest.raises(ValueError, match="end_gap"):
         kernel_model("closed-form", end_gap=-1e-3)
+    # lubrication films: refused beyond a quarter of the inner radius, at one instant and along a run
+    with pytest.raises(ValueError, match="end_gap: .* at most"):
+        fluid_forces(Annulus(A, B, 0.5 * (B - A), LENGTH), Motion(omega_a=1.0), FLUID, "closed-form", end_gap=0.3 * A)
+    with pytest.raises(ValueError, match="end_gap: .* at most"):
+        simulate(preset("steel"), Initial(0.5, 0.5), 0.01, forces=kernel_model("closed-form", end_gap=0.3 * A))
+    with pytest.raises(SceneError, match="model.end_gap"):
+        run_scene(load_scene(None, ['model.end_gap="3 mm"', "run.t_end=0.01 s"]))
     with pytest.raises(SceneError, match="model.end_gap"):
         run_scene(load_scene(None, ["model.equations=reduced", 'model.end_gap="0.5 mm"']))
     with pytest.raises(SceneError, match="end_gap"):

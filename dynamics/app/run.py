@@ -13,6 +13,7 @@ from dynamics.scenes import NavierStokes, Scene, SceneError
 from dynamics.simulation import simulate
 from dynamics.trajectory import Trajectory
 from lubrication import registry
+from lubrication.kernels import check_end_gap
 from lubrication.reynolds import uniform_grid_cells, uniform_grid_reach
 
 __all__ = ["run_scene"]
@@ -150,6 +151,7 @@ def _force_model(scene: Scene):
     if scene.cavitation is not None:
         options.update(cavitation=scene.cavitation.model, p_cav=scene.cavitation.p_cav, p_ref=scene.cavitation.p_ref)
     try:
+        check_end_gap(model.end_gap, apparatus.a)
         return registry.kernel_model(model.forces, length_over_a=apparatus.length / apparatus.a, rho=apparatus.rho,
                                      **options)
     except ValueError as err:
