@@ -26,18 +26,24 @@ def stored():
     return {c["label"]: c for c in json.loads(verdict.RESULTS.read_text())["cases"]}
 
 
-@pytest.mark.parametrize("label", ["b", "c"])
-def test_the_spin_brings_the_runaways_to_the_navier_stokes_reference(stored, label):
+def spin_runs(stored, label):
+    """The verdict's case ``label``: its stored Navier-Stokes series, and the full equations' columns with the
+    exact forces for each fluid spin, run again."""
     case = next(c for c in verdict.CASES if c.label == label)
-    ref = stored[label]["navier_stokes"]["series"]
-    errors = {}
+    columns = {}
     for spin in ("none", "couette", "eccentric"):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ValidityWarning)
-            run = simulate(case.apparatus, case.initial, case.horizon, forces="stokes-exact", fluid_spin=spin,
-                           limits=verdict.LIMITS)
-        x_b = np.interp(case.horizon, run.columns["t"], run.columns["x_b"])
-        errors[spin] = (x_b - ref["x_b"][-1]) / ref["x_b"][-1]
+            columns[spin] = simulate(case.apparatus, case.initial, case.horizon, forces="stokes-exact",
+                                     fluid_spin=spin, limits=verdict.LIMITS).columns
+    return case, stored[label]["navier_stokes"]["series"], columns
+
+
+@pytest.mark.parametrize("label", ["b", "c"])
+def test_the_spin_brings_the_runaways_to_the_navier_stokes_reference(stored, label):
+    case, ref, columns = spin_runs(stored, label)
+    errors = {spin: (np.interp(case.horizon, c["t"], c["x_b"]) - ref["x_b"][-1]) / ref["x_b"][-1]
+              for spin, c in columns.items()}
     assert errors["none"] > 0.06  # ahead: the fluid's spin inertia is missing
     assert abs(errors["couette"]) < 0.02 and abs(errors["eccentric"]) < 0.02
 
@@ -117,17 +123,10 @@ def test_near_contact_the_eccentric_spin_follows_the_navier_stokes_reference_clo
     Navier-Stokes run than with either other choice (measured: log10 gap ratio -0.088 against -0.127 and
     -0.151, largest phi error 0.35 rad against 0.60 and 0.58), and X_b between them (-3.1% against -1.6%
     and -5.1%)."""
-    case = next(c for c in verdict.CASES if c.label == "e")
-    ref = stored["e"]["navier_stokes"]["series"]
-    errors = {}
-    for spin in ("none", "couette", "eccentric"):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ValidityWarning)
-            run = simulate(case.apparatus, case.initial, case.horizon, forces="stokes-exact", fluid_spin=spin,
-                           limits=verdict.LIMITS)
-        c = run.columns
-        errors[spin] = (abs(np.log10(np.interp(case.horizon, c["t"], c["one_minus_kappa"]) / ref["one_minus_kappa"][-1])),
-                        float(np.max(np.abs(np.interp(ref["t"], c["t"], c["phi"]) - np.array(ref["phi"])))))
+    case, ref, columns = spin_runs(stored, "e")
+    errors = {spin: (abs(np.log10(np.interp(case.horizon, c["t"], c["one_minus_kappa"]) / ref["one_minus_kappa"][-1])),
+                     float(np.max(np.abs(np.interp(ref["t"], c["t"], c["phi"]) - np.array(ref["phi"])))))
+              for spin, c in columns.items()}
     for measure, name in enumerate(("log10_gap_ratio", "max_phi_error")):
         margin = min(errors["none"][measure], errors["couette"][measure]) - errors["eccentric"][measure]
         assert margin > verdict.reference_error(stored["e"], name), name
