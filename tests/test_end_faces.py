@@ -66,6 +66,8 @@ def test_the_faces_forces_are_the_integrated_shear_of_their_films(model, kappa):
 
 
 def test_the_faces_dissipate_and_their_drag_falls_as_the_clearance_grows():
+    """The power the faces' films take from the motion, their forces on A less their reaction on B's caps,
+    is the sum of the squares of the films' three shears, and falls as 1/h."""
     annulus = Annulus(A, B, 0.6 * (B - A), LENGTH)
     motion = Motion(eps_dot=2e-4, chi_dot=0.5, omega_a=2.0, omega_b=-1.0)
     base = fluid_forces(annulus, motion, FLUID, "stokes-exact").as_tuple()[:3]
@@ -79,6 +81,11 @@ def test_the_faces_dissipate_and_their_drag_falls_as_the_clearance_grows():
                       - (t_a + eps * f_chi) * motion.omega_b)
     assert powers[0] < 0.0 and powers[1] < 0.0
     assert powers[0] / powers[1] == pytest.approx(4.0, rel=1e-12)  # c ~ 1/h
+    # each term its own square: c (eps'^2 + eps^2 W_b^2 + (a^2/2)(W_a - W_b)^2), c = mu pi a^2 (2/h)
+    w_a, w_b = motion.omega_a - motion.chi_dot, motion.omega_b - motion.chi_dot
+    c = FLUID.mu * math.pi * A**2 * 2.0 / 1e-4
+    dissipated = c * (motion.eps_dot**2 + eps**2 * w_b**2 + 0.5 * A**2 * (w_a - w_b) ** 2)
+    assert -powers[0] == pytest.approx(dissipated, rel=1e-12)
 
 
 def test_only_the_linear_models_take_end_faces_and_scenes_name_the_key():
