@@ -42,6 +42,7 @@ from dynamics.trajectory import Recorder, Trajectory, event_names
 from lubrication.film_transport import TransportedFilm
 from lubrication.geometry import check_range
 from lubrication.kernels import KernelModel, check_end_gap
+from lubrication.spin_table import DELTA_NODES as SPIN_DELTA_NODES
 from lubrication.registry import kernel_model
 from numerics.hybrid import run_phases
 from numerics.integrate import METHODS, integrate
@@ -205,6 +206,7 @@ def simulate(system: Apparatus | ReducedParams, initial: Initial, t_end: float, 
              else kernel_model(forces))
     if model is not None:  # the full equations, whose system is an Apparatus
         check_end_gap(model.end_gap, system.a)
+        _check_spin_table(system, fluid_spin)
     past_stokes = _check_stokes(system, limits, equations, frame_terms, fluid_spin)
     bar = _Bar(t_end, unit) if progress is True else None
     run = _Run(system, dimensionless, t_end, limits, method, rtol, t_eval, max_steps, bar or progress, frame_terms,
@@ -254,6 +256,17 @@ class _Bar:
 
     def close(self) -> None:
         self.bar.close()
+
+
+def _check_spin_table(apparatus, fluid_spin: str) -> None:
+    """A ValidityWarning where the eccentric spin's table (:mod:`lubrication.spin_table`) is held at its widest
+    gap: its shares change by about 0.25 per unit of delta/a there, and beyond it they are not measured."""
+    widest = float(SPIN_DELTA_NODES[-1])
+    if fluid_spin == "eccentric" and apparatus.delta_over_a > widest:
+        warnings.warn(f"fluid_spin = 'eccentric': its table of Stokes solves reaches delta/a = {widest:g}, and this "
+                      f"apparatus has {apparatus.delta_over_a:.3g}; the spin's shares are held at delta/a = "
+                      f"{widest:g} (they change by about 0.25 per unit of delta/a there). fluid_spin = 'couette' "
+                      "is exact where the annulus is concentric", ValidityWarning, stacklevel=3)
 
 
 def _check_stokes(system, limits: Limits, equations: str, frame_terms: str, fluid_spin: str) -> dict | None:

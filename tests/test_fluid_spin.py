@@ -15,7 +15,7 @@ import warnings
 import numpy as np
 import pytest
 
-from dynamics import Initial, ValidityWarning, preset, simulate
+from dynamics import Apparatus, Initial, ValidityWarning, preset, simulate
 from dynamics.scenes import SceneError, load_scene
 from dynamics.app.run import run_scene
 from validation import navier_stokes_verdict as verdict
@@ -46,6 +46,18 @@ def test_the_spin_brings_the_runaways_to_the_navier_stokes_reference(stored, lab
               for spin, c in columns.items()}
     assert errors["none"] > 0.06  # ahead: the fluid's spin inertia is missing
     assert abs(errors["couette"]) < 0.02 and abs(errors["eccentric"]) < 0.02
+
+
+def test_past_the_spin_tables_widest_gap_a_run_warns():
+    """The eccentric spin's shares are measured to delta/a = 1 and held beyond: a wider annulus is warned of,
+    one within the table and the Couette spin are not."""
+    start = Initial(0.5, 0.5)
+    for delta_over_a, spin, warned in ((1.5, "eccentric", True), (0.8, "eccentric", False), (1.5, "couette", False)):
+        ap = Apparatus.from_groups(0.5, 1.0, 2.0, delta_over_a)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ValidityWarning)
+            simulate(ap, start, 0.01 * ap.tau, fluid_spin=spin)
+        assert any("table of Stokes solves" in str(w.message) for w in caught) == warned, (delta_over_a, spin)
 
 
 def test_the_spin_is_the_full_equations_and_scenes_name_it():
