@@ -160,7 +160,7 @@ snail_api_groups = [
     ("Rough contact", [
         "dynamics.contact", "dynamics.contact.reduced", "dynamics.contact.full", "numerics.hybrid",
         "dynamics.contact.steady", "dynamics.contact.roughness", "dynamics.contact.rough",
-        "dynamics.contact.rough_full", "dynamics.contact.laws", "dynamics.ensemble",
+        "dynamics.contact.rough_full", "dynamics.contact.laws", "dynamics.ensemble", "dynamics.tilt",
     ]),
     ("The integrator", [
         "numerics.integrate", "numerics.engine", "numerics.engine.ivp", "numerics.engine.driver",
