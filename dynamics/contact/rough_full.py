@@ -374,6 +374,17 @@ def _contact_events(t, y, args):
     return g
 
 
+def _contact_table(rows, p, c, locked, sigma, model):
+    """RATES at each row of ``rows`` (shape (k, n), C-contiguous): shape (k, 8), for a contact phase's output
+    columns in one call rather than one call a row."""
+    out = np.empty((rows.shape[0], 8))
+    for i in range(rows.shape[0]):
+        r = RATES(rows[i], p, c, locked, sigma, model)  # noqa: F821
+        for m in range(8):
+            out[i, m] = r[m]
+    return out
+
+
 # -- the compliant contact (templates: RHS and COMPLIANT_RHS bound by _compiled) ----------------------
 
 @jit(inline="always")
@@ -471,9 +482,9 @@ def compliant_table(y, args):
 
 
 #: The compiled functions of the rough phases, for one force kernel.
-RoughFullFunctions = namedtuple("RoughFullFunctions", ["free_rhs", "free_jacobian", "rates", "contact_rhs",
-                                                       "contact_jacobian", "contact_events", "compliant_rhs",
-                                                       "compliant_jacobian"])
+RoughFullFunctions = namedtuple("RoughFullFunctions", ["free_rhs", "free_jacobian", "rates", "contact_table",
+                                                       "contact_rhs", "contact_jacobian", "contact_events",
+                                                       "compliant_rhs", "compliant_jacobian"])
 
 
 def _compiled(forces, free: full.ModelFunctions, name: str) -> RoughFullFunctions:
@@ -481,7 +492,8 @@ def _compiled(forces, free: full.ModelFunctions, name: str) -> RoughFullFunction
     contact_rhs = specialise(_contact_rhs, name, RATES=rates)
     compliant_rhs = specialise(_compliant_rhs, name, RHS=free.rhs)
     return RoughFullFunctions(specialise(_free_rhs, name, RHS=free.rhs),
-                              specialise(_free_jacobian, name, JAC=free.jacobian), rates, contact_rhs,
+                              specialise(_free_jacobian, name, JAC=free.jacobian), rates,
+                              specialise(_contact_table, name, RATES=rates), contact_rhs,
                               specialise(_contact_jacobian, name, CONTACT_RHS=contact_rhs),
                               specialise(_contact_events, name, RATES=rates), compliant_rhs,
                               specialise(_compliant_jacobian, name, COMPLIANT_RHS=compliant_rhs))
@@ -766,8 +778,8 @@ class RoughFullRun:
         off = self.passive_contact
         locked = phase.name == LOCKED
         # rows as contiguous arrays, the layout every other call of the rates has: one compiled version
-        rates, numbers, rows = self.functions.rates, self._contact_numbers(locked, phase.sigma), np.array(y.T)
-        table = np.array([rates(row, self.p, numbers, locked, phase.sigma, self.model) for row in rows]).reshape(n, 8)
+        table = self.functions.contact_table(np.array(y.T), self.p, self._contact_numbers(locked, phase.sigma), locked,
+                                             phase.sigma, self.model)
         phi = y[off] + ap.alpha
         return {"kappa": table[:, 6], "one_minus_kappa": table[:, 7], "phi": phi,
                 "kappa_dot": table[:, 5] / ap.delta * tau, "phi_dot": y[off + 1] * tau,
