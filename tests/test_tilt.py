@@ -56,6 +56,18 @@ def test_strips_miss_the_tilted_films_moment_by_the_axial_flow_second_order_in_a
     assert 3.5 < errors[0] / errors[1] < 4.5
 
 
+@pytest.mark.parametrize(("kappa", "ratio"), [(0.5, 0.73), (0.9, 0.91), (0.99, 0.97)])
+def test_open_ends_lower_a_tilts_moment_from_the_strips_by_the_stated_ratio(kappa, ratio):
+    """The device's gap opens into end regions: the moment of a tilt in a turning film on (theta, z) with open
+    ends, over the strips', as the force models' page states it (to 0.02)."""
+    tilt = 0.1 * (1.0 - kappa) * DELTA / (0.5 * L)
+    annulus, motion = Annulus.from_kappa(A, B, kappa, length=L), Motion(omega_a=1.0, omega_b=0.3)
+    _, strips = strip_forces(kernel_model("closed-form"), annulus, motion, OIL, (tilt, 0.0))
+    film = reynolds2d_pressure(annulus, motion, OIL, n=128, n_axial=64, ends="open",
+                               profile=tilted_gap(annulus, tilt))
+    assert np.trapezoid(film.z * film.f_chi_per_length, film.z) / strips[1] == pytest.approx(ratio, abs=0.02)
+
+
 def test_strips_of_an_untilted_cylinder_are_the_plane_forces_times_the_length():
     model = kernel_model("stokes-exact")
     annulus = Annulus.from_kappa(A, B, 0.9, length=L)
