@@ -14,14 +14,13 @@ the mid-plane are
     F = int f dz,    M = int z f dz    over [-L/2, L/2]   (Gauss-Legendre).
 
 What it leaves out is the axial flow, whose pressure gradient is of order
-(a/L)^2 against the azimuthal one: against the Reynolds equation on (theta, z)
-with sealed ends (:func:`lubrication.reynolds2d.reynolds2d_pressure` with
-:func:`~lubrication.reynolds2d.tilted_gap`) the moment's error falls by 3.8-3.9
-when L doubles (tests/test_tilt.py); at the apparatus' L/a = 12.9 it is 4% of
-the moment at kappa = 0.5 and 0.7% at kappa = 0.9. The device's gap opens into
-end regions, which the strips leave out too: with open ends on (theta, z) the
-moment of a tilt in a turning film is 0.73 of the strips' at kappa = 0.5 and
-0.97 at 0.99.
+(a/L)^2 against the azimuthal one, and the end regions into which the device's
+gap opens: against the Reynolds equation on (theta, z)
+(:func:`lubrication.reynolds2d.reynolds2d_pressure` with
+:func:`~lubrication.reynolds2d.tilted_gap`) with sealed ends the moment's error
+falls as (a/L)^2, and with open ends the moment is a fraction of the strips'
+that tends to 1 near contact (both measured in tests/test_tilt.py and stated
+on the force models' page of the docs).
 
 Linear tilt. For a small tilt, M = (L^3/12)(K gamma + C gamma'), with K and C the
 derivatives of the force per unit length with respect to a section's
