@@ -42,8 +42,8 @@ from dynamics.trajectory import Recorder, Trajectory, event_names
 from lubrication.film_transport import TransportedFilm
 from lubrication.geometry import check_range
 from lubrication.kernels import KernelModel, check_end_gap
-from lubrication.spin_table import DELTA_NODES as SPIN_DELTA_NODES
 from lubrication.registry import kernel_model
+from lubrication.spin_table import DELTA_NODES as SPIN_DELTA_NODES
 from numerics.hybrid import run_phases
 from numerics.integrate import METHODS, integrate
 from numerics.jit import compile_watch
