@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import importlib.util
 import io
 import pickle
+import re
 import subprocess
 import sys
 import zipfile
@@ -52,3 +54,28 @@ def test_the_wheel_ships_caches_numba_accepts_for_its_own_sources(tmp_path):
             version, stamp = _index_stamp(wheel.read(str(index)))
             assert version == numba.__version__
             assert stamp == shipped[index.parts[0]], index
+
+
+def _backend():
+    """The in-tree build backend (``buildsystem/backend.py``), as pip loads it."""
+    spec = importlib.util.spec_from_file_location("snail_build_backend", ROOT / "buildsystem" / "backend.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.mark.parametrize(("setting", "compiles"), [(None, True), ("1", True), ("0", False)])
+def test_the_build_asks_for_numba_only_where_it_compiles_the_kernels(monkeypatch, setting, compiles):
+    backend = _backend()
+    # setuptools' own answer runs setup.py's egg_info, which writes into the tree: only what is added is checked
+    monkeypatch.setattr(backend._setuptools, "get_requires_for_build_wheel", lambda config_settings=None: ["wheel"])
+    if setting is None:
+        monkeypatch.delenv("SNAIL_BUILD_KERNELS", raising=False)
+    else:
+        monkeypatch.setenv("SNAIL_BUILD_KERNELS", setting)
+    names = {re.split(r"[<>=!~ ;\[]", requirement, maxsplit=1)[0].lower()
+             for requirement in backend.get_requires_for_build_wheel()}
+    # what setup.py's compiling step imports: the kernels (numba) and the default scene (numpy, scipy, pint)
+    kernels = {"numba", "numpy", "scipy", "pint"}
+    assert kernels <= names if compiles else kernels.isdisjoint(names)
+    assert "wheel" in names

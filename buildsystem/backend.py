@@ -1,0 +1,27 @@
+"""The build backend: setuptools', with the kernels' build requirements only where the build compiles them.
+
+``setup.py`` compiles the kernels of a first ``snail run`` into the wheel, which
+needs numba and what the default scene imports in the isolated build
+environment. With ``SNAIL_BUILD_KERNELS=0`` it compiles nothing, and pip need not
+install those packages into that environment first (about 20 s of an install).
+An editable install never compiles them (they compile in the source tree on first use).
+"""
+
+from __future__ import annotations
+
+import os
+
+from setuptools import build_meta as _setuptools
+from setuptools.build_meta import *  # noqa: F403 - every hook of the PEP 517 interface, as setuptools has it
+
+#: What compiling the kernels imports (numba and the default scene's dependencies).
+KERNEL_REQUIREMENTS = ["numpy>=1.26", "scipy>=1.11", "numba>=0.59", "pint>=0.23"]
+
+
+def _compiles_kernels() -> bool:
+    return os.environ.get("SNAIL_BUILD_KERNELS", "1") != "0"
+
+
+def get_requires_for_build_wheel(config_settings=None):
+    extra = KERNEL_REQUIREMENTS if _compiles_kernels() else []
+    return [*_setuptools.get_requires_for_build_wheel(config_settings), *extra]
