@@ -751,8 +751,10 @@ def test_inputs_are_checked(options, name):
 @jit
 def run_vdp(y0, t_end, args, rtol, atol):
     """A compiled entry point that calls the generic driver with the model's functions as globals."""
-    return driver.solve(vdp, vdp_jac, vdp_events, args, 0.0, y0, t_end, rtol, atol, 0.0, np.inf, 1_000_000,
+    state = driver.init(vdp, vdp_jac, vdp_events, args, 0.0, y0, t_end, rtol, atol, 0.0, np.inf, 1_000_000,
                         np.zeros(0), True, np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
+    t, y, kind, event = driver.advance(vdp, vdp_jac, vdp_events, args, state, 0)
+    return t, y, kind, event, state
 
 
 @pytest.mark.slow

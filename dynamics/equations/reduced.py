@@ -179,7 +179,7 @@ def initial_state(kappa0: float | None, phi0: float, omega_a0: float = 0.0, omeg
 def rhs_values(t, y, args):
     """:func:`rhs` as a tuple of five floats, for compiled callers: a tuple needs no allocation.
 
-    The engine (:func:`numerics.engine.driver.solve`) takes either form; called
+    The engine's driver (:mod:`numerics.engine.driver`) takes either form; called
     directly from compiled code, as the sweeps' batch loop does, the tuple saves
     an array's allocation and release at each of the about seven evaluations a step.
     """

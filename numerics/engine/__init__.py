@@ -48,7 +48,7 @@ Modules, one concept each, in the order a step uses them:
 ``roots``
     Brent's method for an event's root on a step's dense output.
 ``driver``
-    The loop (``init``, ``advance``, ``solve``): events, output rows and their
+    The loop (``init``, ``advance``): events, output rows and their
     kinds, stop reasons, counts, pausing and resuming. Generic in the model's
     functions; compiled code may call them directly (they are then compiled for
     that model inside the caller, in every process: not cached).

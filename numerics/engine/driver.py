@@ -3,18 +3,22 @@
 :func:`init` sets up a :class:`~numerics.engine.state.State` at (t0, y0);
 :func:`advance` takes Radau steps (:func:`numerics.engine.radau.step`) from it
 until the run ends or ``chunk_steps`` steps are taken, and returns the output
-rows of those steps; :func:`solve` does both in one call. They take the model's
-``fun``, ``jac`` and ``events`` as arguments. From Python, call them through
+rows of those steps. They take the model's ``fun``, ``jac`` and ``events`` as
+arguments. From Python, call them through
 :func:`numerics.engine.compiled.engine_for`, compiled once for all models and
 cached. Compiled code may call them directly,
 
     @jit
     def run_model(y0, t_end, args):
-        return solve(rhs, rhs_jacobian, contact_events, args, 0.0, y0, t_end, ...)
+        s = init(rhs, rhs_jacobian, contact_events, args, 0.0, y0, t_end, ...)
+        return advance(rhs, rhs_jacobian, contact_events, args, s, 0)
 
-which compiles the whole loop for that model inside the caller, and
-again in every process: a compiled function handed on as a value is a pointer to
-a Python object, which numba does not write to its disk cache.
+which compiles the whole loop for that model inside the caller. Call both from
+that one function: numba optimises the code of every function a compiled
+function calls once more with it, so each layer of callers around the loop
+costs the loop's optimisation again. A compiled function handed on as a value
+is a pointer to a Python object, which numba does not write to its disk cache:
+such a caller compiles again in every process.
 
 Output rows. Each row is (t, y, kind, event); ``kind`` is a sum of flags: START
 (the initial state, when every step is output or t0 is a requested time), STEP
@@ -84,7 +88,7 @@ from .state import (
     new_state,
 )
 
-__all__ = ["END", "EVENT", "SAMPLE", "START", "STEP", "advance", "init", "no_events", "solve"]
+__all__ = ["END", "EVENT", "SAMPLE", "START", "STEP", "advance", "init", "no_events"]
 
 # Row kinds (flags, a row may carry several). Numpy integers, so that numba does not
 # compile a separate version of every function they are passed to for each value.
@@ -398,13 +402,3 @@ def _trimmed(rows):
     k = rows.count[0]
     return (rows.t[:k].copy(), np.ascontiguousarray(rows.y[:k].T), rows.kind[:k].copy(),
             rows.event[:k].copy())
-
-
-@jit(cache=False)
-def solve(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
-          t_eval, every_step, terminal, direction):
-    """:func:`init` and :func:`advance` to the end in one call; returns (t, y, kind, event, state)."""
-    s = init(fun, jac, events, args, t0, y0, t_end, rtol, atol, first_step, max_step, max_steps,
-             t_eval, every_step, terminal, direction)
-    t, y, kind, event = advance(fun, jac, events, args, s, 0)
-    return t, y, kind, event, s

@@ -1,9 +1,10 @@
 """The compiled loop of the sweeps' batch runner: many runs of the reduced equations (2.11) in one call.
 
 :func:`integrate_points` integrates point after point with the engine's driver
-(:func:`numerics.engine.driver.solve`) called directly on the reduced model's
-:func:`~dynamics.equations.reduced.rhs_values`, :func:`~dynamics.equations.reduced.jacobian`
-and :func:`~dynamics.equations.reduced.event_values`, compiled into the loop: no Python
+(:func:`numerics.engine.driver.init` and :func:`~numerics.engine.driver.advance`) called directly on
+the reduced model's :func:`~dynamics.equations.reduced.rhs_values`,
+:func:`~dynamics.equations.reduced.jacobian` and
+:func:`~dynamics.equations.reduced.event_values`, compiled into the loop: no Python
 per step or per point, no calls through function pointers, and the right-hand side
 and events as tuples, which unlike arrays need no allocation. It returns each
 run's rows as the driver makes them; :mod:`dynamics.app.sweeps.batch` sets the
@@ -35,7 +36,7 @@ from numba.typed import List
 
 from dynamics.equations import reduced
 from numerics import engine
-from numerics.engine.driver import solve
+from numerics.engine.driver import advance, init
 from numerics.engine.state import STATUS, STEPS, STOP_EVENT
 from numerics.jit import compile_shared, jit
 
@@ -66,9 +67,9 @@ def _loop(y0, args, t_end, rtol, terminal, direction, max_steps):
         try:
             # the model's functions through their module: named here, numba would pass them on as pointers to
             # Python objects, which it does not write to its disk cache
-            t, y, kind, event, state = solve(reduced.rhs_values, reduced.jacobian, reduced.event_values, args[i], 0.0,
-                                             y0[i], t_end[i], rtol[i], atol, 0.0, np.inf, max_steps, t_eval,
-                                             True, terminal[i], direction)
+            state = init(reduced.rhs_values, reduced.jacobian, reduced.event_values, args[i], 0.0, y0[i], t_end[i],
+                         rtol[i], atol, 0.0, np.inf, max_steps, t_eval, True, terminal[i], direction)
+            t, y, kind, event = advance(reduced.rhs_values, reduced.jacobian, reduced.event_values, args[i], state, 0)
             runs.append((t, y, kind, event))
             status[i] = state.counters[STATUS]
             stop_event[i] = state.counters[STOP_EVENT]
@@ -124,7 +125,7 @@ def warm():
 def integrate_points(y0, args, t_end, rtol, terminal, direction) -> tuple:
     """Integrate point i of the reduced equations from ``y0[i]`` over [0, ``t_end[i]``] with ``args[i]``.
 
-    Each run is :func:`numerics.engine.driver.solve` from t = 0 with
+    Each run is :func:`numerics.engine.driver.init` and :func:`~numerics.engine.driver.advance` from t = 0 with
     atol = rtol, the first step chosen by the driver, at most 2,000,000 steps,
     and one output row per step.
 
