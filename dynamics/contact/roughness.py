@@ -114,7 +114,7 @@ CLIP_KNEE = 0.2  # ... and are left unchanged above this fraction
 MAX_MODES = 20_000
 _TAIL = 4.0 * math.log(1.0 / np.finfo(float).eps)  # c_k/c_1 < eps beyond k^2 = 1 + _TAIL/lambda^2
 _CHUNK = 4096  # samples per block when evaluating at many angles (memory ~ chunk x K)
-_RESEED = 16  # modes between direct evaluations of cos(k theta), sin(k theta) in the compiled field
+_RESEED = 16  # modes in a block of rotations of the compiled field (_heights_kernel)
 
 #: The spectra a surface may have (:class:`Spectrum`).
 SPECTRA = ("gaussian", "self-affine")
@@ -229,46 +229,35 @@ def soft_floor_curvature(x, floor: float, knee: float):
 
 @jit
 def _heights_kernel(theta, cos_coefficients, sin_coefficients):
-    """Scalar twin of :meth:`SurfaceHeights.__call__`: f(theta) and f'(theta).
+    """Scalar twin of :meth:`SurfaceHeights.__call__`, with the curvature: f, f' and f'' at ``theta``.
 
     cos(k theta), sin(k theta) come from those of (k - 1) theta by one rotation
-    through theta, evaluated afresh every :data:`_RESEED` modes: the rotations'
-    rounding stays below ~_RESEED ulps, and the contact phases, which evaluate
-    the field at every right-hand side, spend a few multiplications per mode
-    instead of two library calls.
+    through theta within blocks of :data:`_RESEED` modes; each block starts from
+    the previous block's start turned through _RESEED theta, and afresh from the
+    library every _RESEED^2 modes. So the contact phases, which evaluate the field
+    at every right-hand side, spend a few multiplications per mode and two library
+    calls per block of _RESEED^2 modes, and the rounding stays below ~2 _RESEED
+    ulps (no rounded phase k theta enters below _RESEED^2 modes).
     """
     theta = theta % (2.0 * math.pi)
     step_cos, step_sin = math.cos(theta), math.sin(theta)
-    value, slope = 0.0, 0.0
-    cos, sin = 1.0, 0.0
-    for i in range(cos_coefficients.size):
-        k = i + 1.0
-        if i % _RESEED == 0:
-            cos, sin = math.cos(k * theta), math.sin(k * theta)
-        else:
-            cos, sin = cos * step_cos - sin * step_sin, sin * step_cos + cos * step_sin
-        value += cos * cos_coefficients[i] + sin * sin_coefficients[i]
-        slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
-    return value, slope
-
-
-@jit
-def _heights2_kernel(theta, cos_coefficients, sin_coefficients):
-    """:func:`_heights_kernel` and f''(theta), by the same rotations."""
-    theta = theta % (2.0 * math.pi)
-    step_cos, step_sin = math.cos(theta), math.sin(theta)
+    block_cos, block_sin = math.cos(_RESEED * theta), math.sin(_RESEED * theta)
+    start_cos, start_sin = step_cos, step_sin
     value, slope, curvature = 0.0, 0.0, 0.0
-    cos, sin = 1.0, 0.0
-    for i in range(cos_coefficients.size):
-        k = i + 1.0
-        if i % _RESEED == 0:
-            cos, sin = math.cos(k * theta), math.sin(k * theta)
-        else:
+    n = cos_coefficients.size
+    for start in range(0, n, _RESEED):
+        if start > 0 and start % (_RESEED * _RESEED) == 0:
+            start_cos, start_sin = math.cos((start + 1.0) * theta), math.sin((start + 1.0) * theta)
+        cos, sin = start_cos, start_sin
+        for i in range(start, min(start + _RESEED, n)):
+            k = i + 1.0
+            even = cos * cos_coefficients[i] + sin * sin_coefficients[i]
+            value += even
+            slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
+            curvature -= k * k * even
             cos, sin = cos * step_cos - sin * step_sin, sin * step_cos + cos * step_sin
-        even = cos * cos_coefficients[i] + sin * sin_coefficients[i]
-        value += even
-        slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
-        curvature -= k * k * even
+        start_cos, start_sin = (start_cos * block_cos - start_sin * block_sin,
+                                start_sin * block_cos + start_cos * block_sin)
     return value, slope, curvature
 
 
@@ -278,8 +267,8 @@ def _local2_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kapp
 
     The first four values are those of :func:`_local_kernel` operation for operation.
     """
-    f_a, df_a, ddf_a = _heights2_kernel(theta_a, cos_a, sin_a)
-    f_b, df_b, ddf_b = _heights2_kernel(theta_b, cos_b, sin_b)
+    f_a, df_a, ddf_a = _heights_kernel(theta_a, cos_a, sin_a)
+    f_b, df_b, ddf_b = _heights_kernel(theta_b, cos_b, sin_b)
     scale = amplitude / math.sqrt(2.0)
     gap, gap_slope, gap_curvature = _soft_floor2_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
     ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
@@ -296,8 +285,8 @@ def _local2_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kapp
 @jit
 def _local_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
     """Scalar twin of :meth:`RoughContact.local`: (kappa*, 1 - kappa*, d kappa*/d theta_a, .../d theta_b)."""
-    f_a, df_a = _heights_kernel(theta_a, cos_a, sin_a)
-    f_b, df_b = _heights_kernel(theta_b, cos_b, sin_b)
+    f_a, df_a, _ = _heights_kernel(theta_a, cos_a, sin_a)
+    f_b, df_b, _ = _heights_kernel(theta_b, cos_b, sin_b)
     scale = amplitude / math.sqrt(2.0)
     gap, gap_slope = _soft_floor_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
     ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
