@@ -136,7 +136,10 @@ def run() -> dict:
              f"small sweep. Once the cluster runs, a realisation costs {marginal['median']:.3f} s of wall time on the "
              f"2 workers ({marginal['min']:.3f}-{marginal['max']:.3f}; the large sweep less the small one, pair by "
              f"pair), and the start {fixed:.1f} s: 1,000 realisations would take {thousand / 60:.1f} min. Goal: "
-             f"{GOAL_SECONDS / 60:.0f} min, " + ("met." if thousand <= GOAL_SECONDS else "not met.")]
+             f"{GOAL_SECONDS / 60:.0f} min, " + ("met." if thousand <= GOAL_SECONDS else "not met."), "",
+             "This machine's speed drifts from minute to minute: a fixed pure-Python loop "
+             f"(`benchmarks.harness.speed_gauge_ms`) took {results['speed_gauge_ms_at_start']:.0f} ms at the start "
+             f"of this run and {results['speed_gauge_ms_at_end']:.0f} ms at its end."]
     publish("ensemble", results, "\n".join(lines))
     return results
 
