@@ -147,3 +147,24 @@ def test_publish_writes_the_json_and_the_markdown_whole(tmp_path, capsys):
 def test_machine_and_speed_gauge():
     assert {"cpu", "cores", "platform", "python", "numpy", "scipy", "numba"} <= set(harness.machine())
     assert harness.speed_gauge_ms(10_000) > 0.0
+
+
+def test_the_ensembles_tolerance_changes_pair_realisations_by_seed(tmp_path):
+    """Per statistic: the largest change of one realisation in units of the spread across realisations, and the
+    change of the ensemble's mean in units of its standard error, seeds paired whatever the rows' order."""
+    from benchmarks.ensemble import _tolerance_changes
+    from dynamics.ensemble import UNSTEADINESS
+
+    default, fast = {0: 1.0, 1: 2.0, 2: 4.0, 3: 5.0}, {3: 5.1, 1: 2.5, 0: 1.0, 2: 4.0}
+    for folder, values in (("default", default), ("fast", fast)):
+        (tmp_path / folder / "out").mkdir(parents=True)
+        lines = ["contact.seed," + ",".join(UNSTEADINESS)]
+        lines += [f"{seed}," + ",".join([str(value)] * len(UNSTEADINESS)) for seed, value in values.items()]
+        (tmp_path / folder / "out" / "sweep.csv").write_text("\n".join(lines) + "\n")
+    changes = _tolerance_changes(tmp_path / "default", tmp_path / "fast")
+    sd = np.sqrt((2.0**2 + 1.0**2 + 1.0**2 + 2.0**2) / 3.0)  # about the mean 3
+    for name in UNSTEADINESS:
+        assert changes[name]["sd"] == pytest.approx(sd)
+        assert changes[name]["largest_change"] == pytest.approx(0.5)  # seed 1
+        assert changes[name]["in_sd"] == pytest.approx(0.5 / sd)
+        assert changes[name]["mean_change_in_se"] == pytest.approx((0.5 + 0.1) / 4.0 / (sd / 2.0))
