@@ -3,8 +3,9 @@
 ``setup.py`` compiles the kernels of a first ``snail run`` into the wheel, which
 needs numba and what the default scene imports in the isolated build
 environment. With ``SNAIL_BUILD_KERNELS=0`` it compiles nothing, and pip need not
-install those packages into that environment first (about 20 s of an install).
-An editable install never compiles them (they compile in the source tree on first use).
+install those packages into that environment first, the larger part of setting
+it up. An editable install never compiles them (they compile in the source tree
+on first use), and asks for setuptools' own requirements only.
 """
 
 from __future__ import annotations
