@@ -118,8 +118,7 @@ def test_curvatures_are_the_derivatives_of_the_slopes(spectrum, rng):
     for got, up, down in pairs:
         np.testing.assert_allclose(got[away], ((up - down) / (2 * h))[away], rtol=0.0, atol=1e-7 * scale)
     assert np.min(x) < CLIP_KNEE and np.sum(~away) <= 3  # the gap's floor is in play
-    coefficients = (rough.inner.cos_coefficients, rough.inner.sin_coefficients, rough.outer.cos_coefficients,
-                    rough.outer.sin_coefficients, rough.amplitude, 0.6, 0.4)
+    coefficients = (rough.inner.jets, rough.outer.jets, rough.amplitude, 0.6, 0.4)
     compiled = np.array([_local2_kernel(a, b, *coefficients) for a, b in zip(theta_a, theta_b)]).T
     first = np.array([_local_kernel(a, b, *coefficients) for a, b in zip(theta_a, theta_b)]).T
     assert np.array_equal(compiled[:4], first)

@@ -96,7 +96,7 @@ The phases as compiled functions
 Each phase is a smooth system run by :func:`numerics.hybrid.run_phases`,
 one compiled call per phase, with ``f(t, y, args)`` functions and ``args``
 from :func:`phase_args` (the groups, the contact, the runaway limit and the
-Fourier coefficients of both surfaces):
+tables of both surfaces' heights):
 
 free
     y = (xi, eta, Omega_a, Omega_b, X_b, Theta_a, S): :func:`free_rhs`,
@@ -212,8 +212,8 @@ LOCKED_EVENTS = ("runaway", "lift", "slip", "slip")
 
 # The args of every phase (phase_args), packed (numerics.packed): the groups of (2.11) (s, Upsilon, mu_), then
 _TAN_PSI, _SIGMA, _XB_LIMIT, _XB0, _CLEARANCE0, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN = range(3, 11)
-# and the surfaces' coefficients as the parts after these numbers
-_COS_A, _SIN_A, _COS_B, _SIN_B = range(1, 5)
+# and the surfaces' tables (SurfaceHeights.jets) as the parts after these numbers
+_JETS_A, _JETS_B = range(1, 3)
 
 # The components of contact_state
 _PHI_DOT, _OMEGA_A_DOT, _OMEGA_B_DOT, _C_E, _C_X, _KAPPA, _ONE_MINUS_KAPPA = range(7)
@@ -228,7 +228,8 @@ def phase_args(params: ReducedParams, rough: RoughContact, sigma: float = 0.0, *
 
     Packed (:mod:`numerics.packed`): the numbers (s, Upsilon, mu_, tan(psi), sigma,
     x_b_limit, x_b0, clearance0, amplitude, kappa*_mean, 1 - kappa*_mean), then the
-    cosine and sine coefficients of the inner and outer surface as parts. ``sigma`` is the sliding phase's sgn(D);
+    tables of the inner and outer surface's heights
+    (:attr:`~dynamics.contact.roughness.SurfaceHeights.jets`) as parts. ``sigma`` is the sliding phase's sgn(D);
     the runaway fires when |X_b - x_b0| reaches ``x_b_limit`` (units of b);
     ``clearance0`` is subtracted from the free phase's clearance r - r*
     (module docstring: a free phase that starts on the constraint).
@@ -236,15 +237,14 @@ def phase_args(params: ReducedParams, rough: RoughContact, sigma: float = 0.0, *
     mean = rough.mean
     numbers = [*params.args, mean.tan_psi, sigma, x_b_limit, x_b0, clearance0, rough.amplitude, mean.kappa_star,
                mean.one_minus_kappa_star]
-    return pack(numbers, rough.inner.cos_coefficients, rough.inner.sin_coefficients,
-                rough.outer.cos_coefficients, rough.outer.sin_coefficients)
+    return pack(numbers, rough.inner.jets, rough.outer.jets)
 
 
 @jit(inline="always")
 def _local(theta_a, theta_b, args):
     """(kappa*, 1 - kappa*, d kappa*/d theta_a, d kappa*/d theta_b) at the body angles (roughness field)."""
-    return _local_kernel(theta_a, theta_b, part(args, _COS_A), part(args, _SIN_A), part(args, _COS_B),
-                         part(args, _SIN_B), args[_AMPLITUDE], args[_KAPPA_MEAN], args[_GAP_MEAN])
+    return _local_kernel(theta_a, theta_b, part(args, _JETS_A), part(args, _JETS_B), args[_AMPLITUDE],
+                         args[_KAPPA_MEAN], args[_GAP_MEAN])
 
 
 @jit

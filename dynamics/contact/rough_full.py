@@ -174,18 +174,16 @@ COMPLIANT_EVENTS = full.EVENT_NAMES[:4]
 # phases) or dynamics.contact.full (contact phases), then this block.
 _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)  # the contact phases' first 7
 (_PASSIVE, _CLEARANCE0, _ALPHA, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN, _MU_KINETIC, _MU_STATIC, _V_STRIBECK,
- _WEIGHT, _ELL, _DAMPING, _GAUSSIAN, _V_SLIP, _NORM, _N_A, _N_B, _COEF) = range(7, 25)
+ _WEIGHT, _ELL, _DAMPING, _GAUSSIAN, _V_SLIP, _NORM, _N_A, _N_B, _JETS) = range(7, 25)
 _A, _B = 0, 1  # in the parameter array of dynamics.equations.full
 
 
 @jit(inline="always")
 def _field(theta_a, theta_b, c):
     """kappa*, 1 - kappa*, k_a, k_b, k_aa, k_ab, k_bb at the body angles (:mod:`dynamics.contact.roughness`)."""
-    n_a, n_b = int(c[_N_A]), int(c[_N_B])
-    i = _COEF
-    j = i + 2 * n_a
-    return _local2_kernel(theta_a, theta_b, c[i:i + n_a], c[i + n_a:j], c[j:j + n_b], c[j + n_b:j + 2 * n_b],
-                          c[_AMPLITUDE], c[_KAPPA_MEAN], c[_GAP_MEAN])
+    j = _JETS + int(c[_N_A])
+    return _local2_kernel(theta_a, theta_b, c[_JETS:j], c[j:j + int(c[_N_B])], c[_AMPLITUDE], c[_KAPPA_MEAN],
+                          c[_GAP_MEAN])
 
 
 @jit(inline="always")
@@ -567,6 +565,7 @@ class RoughFullRun:
         self.passive_free = 2 if self.varies else 0
         self.passive_contact = 1 if self.varies else 0
         self._blocks: dict = {}
+        self._numbers: dict = {}
 
     # the numbers of every phase ----------------------------------------------------------------
     def _block(self, passive: int, clearance0: float = 0.0) -> np.ndarray:
@@ -584,19 +583,21 @@ class RoughFullRun:
                      else [self.weight, 1.0, 0.0, 0.0, 1.0, 1.0])
         return np.concatenate(([float(passive), clearance0, ap.alpha, rough.amplitude, self.mean.kappa_star,
                                 self.mean.one_minus_kappa_star, self.mu_k, self.mu_s, self.v_stribeck],
-                               compliant, [float(inner.modes), float(outer.modes)],
-                               inner.cos_coefficients, inner.sin_coefficients,
-                               outer.cos_coefficients, outer.sin_coefficients))
+                               compliant, [float(inner.jets.size), float(outer.jets.size)], inner.jets, outer.jets))
 
     def free_args_for(self, clearance0: float = 0.0) -> np.ndarray:
         p, model, typical, ev = parts(self.free_args)
         return pack(p, model, typical, np.concatenate((ev, self._block(self.passive_free, clearance0))))
 
     def _contact_numbers(self, locked: bool, sigma: float) -> np.ndarray:
-        """The part EVENTS of a contact phase's args (the rates of every output row read it too)."""
-        numbers = np.array([*self.runaway, self.mean.kappa_star, self.mean.one_minus_kappa_star, float(locked), sigma,
-                            self.mu_k])
-        return np.concatenate((numbers, self._block(self.passive_contact)))
+        """The part EVENTS of a contact phase's args (the rates of every output row read it too); kept, as it holds
+        the surfaces' tables and a run asks for it at every switch."""
+        key = (locked, sigma)
+        if key not in self._numbers:
+            numbers = np.array([*self.runaway, self.mean.kappa_star, self.mean.one_minus_kappa_star, float(locked),
+                                sigma, self.mu_k])
+            self._numbers[key] = np.concatenate((numbers, self._block(self.passive_contact)))
+        return self._numbers[key]
 
     def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
         typical = (np.concatenate(([1.0], self.contact_typical)) if self.varies else self.contact_typical)

@@ -89,12 +89,34 @@ equations stay smooth. The result is kappa* in (kappa*_mean/10,
 1 - sigma_mean/(10 delta)), strictly inside (0, 1). Where the clip acts, the
 mean and spread of sigma differ slightly from the unclipped ones. At
 amplitude 0 nothing is clipped, and kappa* is kappa*_mean exactly.
+
+The compiled field
+------------------
+The integrator asks for f, f' and f'' of both surfaces at every evaluation of
+a rough phase's right-hand side, so the series is not summed there. Each
+surface keeps instead a table (:attr:`SurfaceHeights.jets`): at N equally
+spaced nodes theta_j = j h, h = 2 pi/N, the Taylor coefficients
+f^(m)(theta_j) h^m/m! for m = 0 .. M = :data:`JET_ORDER`, all computed at once
+by inverse FFTs of the coefficients. At theta the compiled field takes the
+nearest node, u = (theta - theta_j)/h in [-1/2, 1/2], and evaluates the
+polynomial and its first two derivatives: about 3M multiply-adds, whatever
+the number of modes K. N is the power of two with pi K/N <= 1/2, so that
+k |theta - theta_j| <= 1/2 for every mode. The remainder of the Taylor
+polynomial then bounds the error of f'' (the largest) by
+
+    sum_k k^(M+1) c_k (|A_k| + |B_k|) |theta - theta_j|^(M-1)/(M-1)!  <=  S_2 (1/2)^(M-1)/(M-1)!,
+
+with S_2 = sum_k k^2 (|A_k| + |B_k|) c_k the size of the terms of f'': 2e-17 S_2
+for M = 16, below the rounding, which is that of the FFTs (tests/test_roughness.py
+measures both). The polynomials of neighbouring nodes meet at mid-interval to that
+rounding, so the field is smooth at the integrator's tolerances.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -104,7 +126,7 @@ from dynamics.contact.reduced import ContactParams
 from lubrication.geometry import check_range
 from numerics.jit import jit
 
-__all__ = ["CLIP_FLOOR", "CLIP_KNEE", "GAUSSIAN", "MAX_MODES", "SPECTRA", "LocalCurvature", "LocalGap",
+__all__ = ["CLIP_FLOOR", "CLIP_KNEE", "GAUSSIAN", "JET_ORDER", "MAX_MODES", "SPECTRA", "LocalCurvature", "LocalGap",
            "RoughContact", "Spectrum", "SurfaceHeights", "soft_floor"]
 
 CLIP_FLOOR = 0.1  # sigma and kappa* never fall below this fraction of their means
@@ -114,7 +136,9 @@ CLIP_KNEE = 0.2  # ... and are left unchanged above this fraction
 MAX_MODES = 20_000
 _TAIL = 4.0 * math.log(1.0 / np.finfo(float).eps)  # c_k/c_1 < eps beyond k^2 = 1 + _TAIL/lambda^2
 _CHUNK = 4096  # samples per block when evaluating at many angles (memory ~ chunk x K)
-_RESEED = 16  # modes in a block of rotations of the compiled field (_heights_kernel)
+#: The degree of the compiled field's Taylor polynomials at its nodes (module docstring: the compiled field).
+JET_ORDER = 16
+_JET_REACH = 0.5  # the nodes are close enough that k |theta - theta_j| <= this for every mode k <= K
 
 #: The spectra a surface may have (:class:`Spectrum`).
 SPECTRA = ("gaussian", "self-affine")
@@ -227,48 +251,59 @@ def soft_floor_curvature(x, floor: float, knee: float):
     return np.where(x < knee, 6.0 * v * (1.0 + v) * blend**3 / (knee - floor), 0.0)
 
 
+def _jets(cos_coefficients: np.ndarray, sin_coefficients: np.ndarray) -> np.ndarray:
+    """The compiled field's table of a series (module docstring: the compiled field), flat, node after node.
+
+    Row j holds T_m = f^(m)(theta_j) h^m / m!, m = 0 .. JET_ORDER, at the node theta_j = j h,
+    h = 2 pi / N: each derivative of the series at all N nodes at once, by an inverse real FFT of
+    its coefficients times (i k h)^m / m! (a product that stays below 1, whatever K and m).
+    """
+    modes = cos_coefficients.size
+    nodes = max(16, 1 << math.ceil(math.log2(math.pi * modes / _JET_REACH)))
+    h = 2.0 * math.pi / nodes
+    k = np.arange(1, modes + 1)
+    # irfft gives (2/N) Re(X_k e^{i k theta_j}) for 0 < k < N/2: X_k = (N/2)(A_k - i B_k) gives A_k cos + B_k sin
+    coefficients = 0.5 * nodes * (cos_coefficients - 1j * sin_coefficients)
+    spectrum = np.zeros(nodes // 2 + 1, dtype=complex)
+    table = np.empty((nodes, JET_ORDER + 1))
+    for m in range(JET_ORDER + 1):
+        spectrum[1:modes + 1] = coefficients
+        table[:, m] = np.fft.irfft(spectrum, n=nodes)
+        coefficients = coefficients * (1j * h / (m + 1)) * k
+    return table.ravel()
+
+
 @jit
-def _heights_kernel(theta, cos_coefficients, sin_coefficients):
+def _heights_kernel(theta, jets):
     """Scalar twin of :meth:`SurfaceHeights.__call__`, with the curvature: f, f' and f'' at ``theta``.
 
-    cos(k theta), sin(k theta) come from those of (k - 1) theta by one rotation
-    through theta within blocks of :data:`_RESEED` modes; each block starts from
-    the previous block's start turned through _RESEED theta, and afresh from the
-    library every _RESEED^2 modes. So the contact phases, which evaluate the field
-    at every right-hand side, spend a few multiplications per mode and two library
-    calls per block of _RESEED^2 modes, and the rounding stays below ~2 _RESEED
-    ulps (no rounded phase k theta enters below _RESEED^2 modes).
+    From the table ``jets`` (:meth:`SurfaceHeights.jets`): the Taylor polynomial of degree
+    JET_ORDER at the nearest node, in u = (theta - theta_j)/h, |u| <= 1/2, and its first two
+    derivatives by Horner's scheme, whatever the number of modes.
     """
-    theta = theta % (2.0 * math.pi)
-    step_cos, step_sin = math.cos(theta), math.sin(theta)
-    block_cos, block_sin = math.cos(_RESEED * theta), math.sin(_RESEED * theta)
-    start_cos, start_sin = step_cos, step_sin
-    value, slope, curvature = 0.0, 0.0, 0.0
-    n = cos_coefficients.size
-    for start in range(0, n, _RESEED):
-        if start > 0 and start % (_RESEED * _RESEED) == 0:
-            start_cos, start_sin = math.cos((start + 1.0) * theta), math.sin((start + 1.0) * theta)
-        cos, sin = start_cos, start_sin
-        for i in range(start, min(start + _RESEED, n)):
-            k = i + 1.0
-            even = cos * cos_coefficients[i] + sin * sin_coefficients[i]
-            value += even
-            slope += k * (cos * sin_coefficients[i] - sin * cos_coefficients[i])
-            curvature -= k * k * even
-            cos, sin = cos * step_cos - sin * step_sin, sin * step_cos + cos * step_sin
-        start_cos, start_sin = (start_cos * block_cos - start_sin * block_sin,
-                                start_sin * block_cos + start_cos * block_sin)
-    return value, slope, curvature
+    width = JET_ORDER + 1
+    nodes = jets.size // width
+    h = 2.0 * math.pi / nodes
+    x = theta % (2.0 * math.pi)
+    j = int(math.floor(x / h + 0.5))
+    u = (x - j * h) / h
+    row = (j % nodes) * width
+    value, slope, curvature = jets[row + JET_ORDER], 0.0, 0.0
+    for m in range(JET_ORDER - 1, -1, -1):
+        curvature = curvature * u + 2.0 * slope
+        slope = slope * u + value
+        value = value * u + jets[row + m]
+    return value, slope / h, curvature / (h * h)
 
 
 @jit
-def _local2_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
+def _local2_kernel(theta_a, theta_b, jets_a, jets_b, amplitude, kappa_mean, gap_mean):
     """:func:`_local_kernel` and the curvatures (k_aa, k_ab, k_bb) of kappa* (module docstring).
 
     The first four values are those of :func:`_local_kernel` operation for operation.
     """
-    f_a, df_a, ddf_a = _heights_kernel(theta_a, cos_a, sin_a)
-    f_b, df_b, ddf_b = _heights_kernel(theta_b, cos_b, sin_b)
+    f_a, df_a, ddf_a = _heights_kernel(theta_a, jets_a)
+    f_b, df_b, ddf_b = _heights_kernel(theta_b, jets_b)
     scale = amplitude / math.sqrt(2.0)
     gap, gap_slope, gap_curvature = _soft_floor2_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
     ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
@@ -283,10 +318,10 @@ def _local2_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kapp
 
 
 @jit
-def _local_kernel(theta_a, theta_b, cos_a, sin_a, cos_b, sin_b, amplitude, kappa_mean, gap_mean):
+def _local_kernel(theta_a, theta_b, jets_a, jets_b, amplitude, kappa_mean, gap_mean):
     """Scalar twin of :meth:`RoughContact.local`: (kappa*, 1 - kappa*, d kappa*/d theta_a, .../d theta_b)."""
-    f_a, df_a, _ = _heights_kernel(theta_a, cos_a, sin_a)
-    f_b, df_b, _ = _heights_kernel(theta_b, cos_b, sin_b)
+    f_a, df_a, _ = _heights_kernel(theta_a, jets_a)
+    f_b, df_b, _ = _heights_kernel(theta_b, jets_b)
     scale = amplitude / math.sqrt(2.0)
     gap, gap_slope = _soft_floor_kernel(1.0 + scale * (f_a + f_b), CLIP_FLOOR, CLIP_KNEE)
     ratio = 1.0 - gap_mean * (gap - 1.0) / kappa_mean
@@ -326,6 +361,11 @@ class SurfaceHeights:
     def modes(self) -> int:
         """K, the number of Fourier modes."""
         return self.cos_coefficients.size
+
+    @cached_property
+    def jets(self) -> np.ndarray:
+        """The table the compiled field evaluates (module docstring: the compiled field), built once."""
+        return _jets(self.cos_coefficients, self.sin_coefficients)
 
     def __call__(self, theta):
         """f(theta) and f'(theta) at body angles ``theta`` (rad, any shape)."""
@@ -514,7 +554,5 @@ class RoughContact:
 
     def local_at(self, theta_a: float, theta_b: float) -> LocalGap:
         """:meth:`local` at one pair of angles, as floats: the compiled twin the integrator calls."""
-        return LocalGap(*_local_kernel(float(theta_a), float(theta_b), self.inner.cos_coefficients,
-                                       self.inner.sin_coefficients, self.outer.cos_coefficients,
-                                       self.outer.sin_coefficients, self.amplitude, self.mean.kappa_star,
-                                       self.mean.one_minus_kappa_star))
+        return LocalGap(*_local_kernel(float(theta_a), float(theta_b), self.inner.jets, self.outer.jets,
+                                       self.amplitude, self.mean.kappa_star, self.mean.one_minus_kappa_star))
