@@ -24,7 +24,7 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from numerics.engine import END, START
+from numerics.engine import END, INTERRUPTED, START, Interrupts, stop_message
 from numerics.integrate import integrate
 
 __all__ = ["MAX_SWITCHES", "SWITCHES", "Phase", "Switch", "run_phases"]
@@ -133,46 +133,52 @@ def run_phases(start: Phase, transition, columns, t_end: float, *, phi0: float, 
     phase, t0, phi = start, 0.0, phi0
     pieces, switches = [], []
     totals = {"steps": 0, "nfev": 0, "njev": 0, "nlu": 0}
-    while True:
-        phase_eval = None
-        if samples is not None:
-            phase_eval = samples[(samples > t0) & (samples <= t_end)] - t0 if pieces else samples - t0
-            phase_eval = phase_eval[phase_eval <= t_end - t0]
-        run = integrate(phase.fun, phase.jac, (0.0, t_end - t0), phase.y0, args=phase.args, method=method,
-                        rtol=rtol, atol=phase.atol, events=phase.events, terminal=phase.terminal,
-                        direction=phase.direction, t_eval=phase_eval, steps=steps,
-                        max_steps=max(max_steps - totals["steps"], 1),
-                        progress=None if progress is None else (lambda t, t0=t0: progress(t0 + t)))
-        for key in totals:
-            totals[key] += getattr(run, key)
-        names = np.array([phase.event_names[i] if i >= 0 else "" for i in run.event], dtype=object)
-        phase.extra["phi0"] = phi
-        cols = columns(phase, run.t, run.y, run.kind)
-        if run.t.size:
-            phi = float(cols["phi"][-1])
-        repeat = pieces and phase.continues and run.kind.size and run.kind[0] & START
-        rows = slice(1 if repeat else 0, None)
-        pieces.append((t0 + run.t[rows], run.kind[rows], np.full(run.t[rows].size, phase.name), names[rows],
-                       {key: value[rows] for key, value in cols.items()}))
-        name = phase.event_names[run.stop_event] if run.stop_event >= 0 else ""
-        status, message, code = run.status, run.message, run.code
-        if name not in SWITCHES:
-            break
-        t_switch = t0 + float(run.t[-1])
-        if t_switch >= t_end:  # a switch exactly at t_end ends the run
-            status, name = 0, ""
-            break
-        if len(switches) >= max_switches:
-            status, name = -1, "max_switches"
-            message = f"more than max_switches = {max_switches} phase switches by t = {t_switch:.17g}"
-            break
-        old = phase.name
-        phase = transition(phase, name, t_switch, run.y[:, -1], phi)
-        if phase.record and not phase.continues:
-            switches.append(Switch(t_switch, old, phase.name))
-        t0 = t_switch
-        # the state at the switch is the first row of the next phase: mark the last row as an event only
-        pieces[-1][1][-1] &= ~END
+    # one handler of Ctrl-C and SIGTERM for the whole run: each phase's run reads it, none sets its own
+    with Interrupts() as interrupts:
+        while True:
+            phase_eval = None
+            if samples is not None:
+                phase_eval = samples[(samples > t0) & (samples <= t_end)] - t0 if pieces else samples - t0
+                phase_eval = phase_eval[phase_eval <= t_end - t0]
+            run = integrate(phase.fun, phase.jac, (0.0, t_end - t0), phase.y0, args=phase.args, method=method,
+                            rtol=rtol, atol=phase.atol, events=phase.events, terminal=phase.terminal,
+                            direction=phase.direction, t_eval=phase_eval, steps=steps,
+                            max_steps=max(max_steps - totals["steps"], 1),
+                            progress=None if progress is None else (lambda t, t0=t0: progress(t0 + t)))
+            for key in totals:
+                totals[key] += getattr(run, key)
+            names = np.array([phase.event_names[i] if i >= 0 else "" for i in run.event], dtype=object)
+            phase.extra["phi0"] = phi
+            cols = columns(phase, run.t, run.y, run.kind)
+            if run.t.size:
+                phi = float(cols["phi"][-1])
+            repeat = pieces and phase.continues and run.kind.size and run.kind[0] & START
+            rows = slice(1 if repeat else 0, None)
+            pieces.append((t0 + run.t[rows], run.kind[rows], np.full(run.t[rows].size, phase.name), names[rows],
+                           {key: value[rows] for key, value in cols.items()}))
+            name = phase.event_names[run.stop_event] if run.stop_event >= 0 else ""
+            status, message, code = run.status, run.message, run.code
+            if name not in SWITCHES:
+                break
+            t_switch = t0 + float(run.t[-1])
+            if t_switch >= t_end:  # a switch exactly at t_end ends the run
+                status, name = 0, ""
+                break
+            if len(switches) >= max_switches:
+                status, name = -1, "max_switches"
+                message = f"more than max_switches = {max_switches} phase switches by t = {t_switch:.17g}"
+                break
+            if interrupts.received:  # noted between two phases: the run stops at the switch
+                status, name, code = -1, "", INTERRUPTED
+                message = stop_message(INTERRUPTED, t_switch, by=interrupts.received)
+                break
+            old = phase.name
+            phase = transition(phase, name, t_switch, run.y[:, -1], phi)
+            if phase.record and not phase.continues:
+                switches.append(Switch(t_switch, old, phase.name))
+            t0 = t_switch
+            # the state at the switch is the first row of the next phase: mark the last row as an event only
+            pieces[-1][1][-1] &= ~END
     merged = {key: np.concatenate([p[4][key] for p in pieces]) for key in pieces[0][4]}
     return dict(t=np.concatenate([p[0] for p in pieces]), kind=np.concatenate([p[1] for p in pieces]),
                 phase=np.concatenate([p[2] for p in pieces]), event_names=np.concatenate([p[3] for p in pieces]),

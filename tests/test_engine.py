@@ -19,6 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numba
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -37,6 +38,7 @@ from numerics.engine import (
     STEP,
     STEP_TOO_SMALL,
     TERMINAL_EVENT,
+    Interrupts,
     driver,
     engine_for,
     integrate,
@@ -45,6 +47,7 @@ from numerics.engine import (
     radau,
 )
 from numerics.engine.borrow import borrow
+from numerics.engine.ivp import _args_type
 from numerics.engine.state import STATUS
 from numerics.jit import jit
 
@@ -606,6 +609,30 @@ def test_ctrl_c_between_chunks_keeps_the_run_and_it_can_continue(ctrl_c):
     rest = engine_for(MU).advance(vdp, vdp_jac, no_events, MU, state, 0)
     np.testing.assert_array_equal(np.concatenate([stopped.t[:-1], rest[0]]), whole.t)
     np.testing.assert_array_equal(np.concatenate([stopped.y[:, :-1], rest[1]], axis=1), whole.y)
+
+
+def test_within_an_enclosing_run_a_signal_stops_the_inner_run_and_reaches_the_outer(ctrl_c):
+    """A hybrid run holds one handler around its phases' runs: the inner run sets none and reads the outer's."""
+    calls = []
+
+    def progress(t):
+        calls.append(signal.getsignal(signal.SIGINT))
+        if len(calls) == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with Interrupts() as outer:
+        stopped = integrate(vdp, vdp_jac, (0.0, 2000.0), [2.0, 0.0], args=MU, rtol=1e-6, atol=1e-6,
+                            chunk_steps=50, progress=progress)
+    assert stopped.code == INTERRUPTED and stopped.steps == 150 and "by SIGINT" in stopped.message
+    assert outer.received == "SIGINT" and all(handler == outer._note for handler in calls)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+@pytest.mark.parametrize("args", [np.zeros(3), np.zeros(0), np.zeros(6)[::2], np.zeros(3, dtype=np.float32),
+                                  np.zeros((2, 2)), np.asfortranarray(np.zeros((2, 2))), (np.zeros(2), 1.0),
+                                  np.frombuffer(bytes(24))])
+def test_the_quick_type_of_args_is_numbas(args):
+    assert _args_type(args) == numba.typeof(args)
 
 
 # --------------------------------------------------------------------------- failures

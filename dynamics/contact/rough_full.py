@@ -565,7 +565,8 @@ class RoughFullRun:
         self.passive_free = 2 if self.varies else 0
         self.passive_contact = 1 if self.varies else 0
         self._blocks: dict = {}
-        self._numbers: dict = {}
+        self._numbers: dict = {}  # the contact phases' numbers and args, by (locked, sigma)
+        self._contact_args: dict = {}
 
     # the numbers of every phase ----------------------------------------------------------------
     def _block(self, passive: int, clearance0: float = 0.0) -> np.ndarray:
@@ -600,8 +601,11 @@ class RoughFullRun:
         return self._numbers[key]
 
     def contact_args(self, locked: bool, sigma: float) -> np.ndarray:
-        typical = (np.concatenate(([1.0], self.contact_typical)) if self.varies else self.contact_typical)
-        return pack(self.p, self.model, typical, self._contact_numbers(locked, sigma))
+        key = (locked, sigma)
+        if key not in self._contact_args:
+            typical = (np.concatenate(([1.0], self.contact_typical)) if self.varies else self.contact_typical)
+            self._contact_args[key] = pack(self.p, self.model, typical, self._contact_numbers(locked, sigma))
+        return self._contact_args[key]
 
     def compliant_args(self) -> np.ndarray:
         typical = parts(self.free_args)[full.TYPICAL]

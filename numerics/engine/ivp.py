@@ -111,6 +111,8 @@ class Result:
 
 
 def _int_per_event(value, m: int, name: str) -> np.ndarray:
+    if type(value) is tuple and len(value) == m and all(type(v) is int for v in value):  # as the hybrid phases give
+        return np.array(value, dtype=np.int64)
     array = np.broadcast_to(np.asarray(value), (m,)) if np.ndim(value) == 0 else np.asarray(value)
     if array.shape != (m,):
         msg = f"{name} must be a scalar or have one entry per event ({m}), got shape {array.shape}"
@@ -141,7 +143,7 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-
     if y0.ndim != 1 or y0.size == 0:
         msg = f"y0 must be a non-empty 1-D array, got shape {y0.shape}"
         raise ValueError(msg)
-    if not np.all(np.isfinite(y0)):
+    if not np.isfinite(y0).all():
         msg = "y0 must be finite"
         raise ValueError(msg)
     n = y0.size
@@ -151,7 +153,7 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-
         raise ValueError(msg)
     atol = np.array(np.broadcast_to(np.asarray(atol, dtype=float), (n,)) if np.ndim(atol) == 0
                     else np.asarray(atol, dtype=float))
-    if atol.shape != (n,) or not np.all(np.isfinite(atol)) or not np.all(atol > 0):
+    if atol.shape != (n,) or not np.isfinite(atol).all() or not (atol > 0).all():
         msg = f"atol must be positive and finite, a scalar or of shape ({n},), got {atol}"
         raise ValueError(msg)
     if first_step is None:
@@ -168,7 +170,7 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-
         raise ValueError(msg)
     every_step = t_eval is None if steps is None else bool(steps)
     t_eval = np.zeros(0) if t_eval is None else np.array(t_eval, dtype=float)
-    if t_eval.ndim != 1 or not np.all(np.isfinite(t_eval)) or np.any(np.diff(t_eval) <= 0):
+    if t_eval.ndim != 1 or not np.isfinite(t_eval).all() or (t_eval[1:] <= t_eval[:-1]).any():
         msg = "t_eval must be a 1-D array of finite, strictly increasing times"
         raise ValueError(msg)
     if t_eval.size and (t_eval[0] < t0 or t_eval[-1] > t_end):
@@ -190,11 +192,11 @@ def check_inputs(fun, jac, events, t_span, y0, *, args=None, rtol=1e-6, atol=1e-
         raise ValueError(msg)
     m = g0.size
     terminal = _int_per_event(terminal, m, "terminal")
-    if np.any(terminal < 0):
+    if (terminal < 0).any():
         msg = f"terminal must be >= 0 (False, True or a count of occurrences), got {terminal}"
         raise ValueError(msg)
     direction = _int_per_event(direction, m, "direction")
-    if not np.all(np.abs(direction) <= 1):  # not np.isin, slow on a few entries: a hybrid run checks every phase
+    if not (np.abs(direction) <= 1).all():  # not np.isin, slow on a few entries: a hybrid run checks every phase
         msg = f"direction must be -1, 0 or +1 per event, got {direction}"
         raise ValueError(msg)
     return {"t0": t0, "y0": y0, "t_end": t_end, "rtol": rtol, "atol": atol,
@@ -209,28 +211,55 @@ class Interrupts:
     computed. Only in the main thread, and only for a signal whose handler is
     the default one or says it stops a program as Ctrl-C does (an attribute
     ``interrupts_runs`` set true, as the command line's SIGTERM handler has): a
-    program that handles a signal otherwise keeps it.
+    program that handles a signal otherwise keeps it. Within another
+    ``Interrupts`` (a hybrid run around its phases' runs), the outer one notes
+    the signal and the inner reads it there, with no handler of its own to set.
     """
 
     def __init__(self):
-        self.received = ""
+        self._received = ""
+        self._outer = None
         self._previous = {}
+
+    @property
+    def received(self) -> str:
+        """The name of the first signal received ("" if none)."""
+        return self._received or (self._outer.received if self._outer is not None else "")
+
+    @received.setter
+    def received(self, name: str):
+        self._received = name
 
     def __enter__(self):
         if threading.current_thread() is threading.main_thread():
             for sig, default in ((signal.SIGINT, signal.default_int_handler), (signal.SIGTERM, signal.SIG_DFL)):
                 handler = signal.getsignal(sig)
-                if handler is default or getattr(handler, "interrupts_runs", False):
+                outer = getattr(handler, "__self__", None)
+                if isinstance(outer, Interrupts):
+                    self._outer = outer
+                elif handler is default or getattr(handler, "interrupts_runs", False):
                     self._previous[sig] = signal.signal(sig, self._note)
         return self
 
     def _note(self, signum, frame):
-        self.received = self.received or signal.Signals(signum).name
+        self._received = self._received or signal.Signals(signum).name
 
     def __exit__(self, *exc):
         for sig, handler in self._previous.items():
             signal.signal(sig, handler)
         return False
+
+
+_VECTOR_TYPE = numba.typeof(np.zeros(1))
+
+
+def _args_type(args):
+    """numba's type of ``args``: at once for a float64 vector as the models pack theirs (numba.typeof takes
+    longer than a short phase's setting up), else looked up."""
+    if (type(args) is np.ndarray and args.dtype == np.float64 and args.ndim == 1 and args.flags.c_contiguous
+            and args.flags.writeable and args.flags.aligned):
+        return _VECTOR_TYPE
+    return numba.typeof(args)
 
 
 def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=None, terminal=0,
@@ -287,7 +316,7 @@ def integrate(fun, jac, t_span, y0, *, args=None, rtol=1e-6, atol=1e-9, events=N
     inputs = check_inputs(fun, jac, events, t_span, y0, args=args, rtol=rtol, atol=atol, t_eval=t_eval,
                           steps=steps, terminal=terminal, direction=direction, first_step=first_step,
                           max_step=max_step, max_steps=max_steps)
-    args_type = numba.typeof(args)
+    args_type = _args_type(args)
     engine = engine_for(args, args_type)
     fun, jac, events = first_class(fun, jac, events, args, args_type)
     state = engine.init(fun, jac, events, args, **inputs)
