@@ -44,9 +44,21 @@ a thin film at (Omega_a + Omega_b)/2), and any inertia makes that whirl grow.
 matrix at its rows, linear between them), from unit tilts in both directions:
 the tilt's largest amplification over the run, and the largest growth rate of
 the equation frozen at each instant, say whether the trajectory's aligned motion
-is stable to a tilt. Quasi-steady forces, as in (2.1)-(2.4); the free film only (smooth walls,
-no contact phases); and the section's frame is singular where the mid-plane is
-centred, so the trajectory must keep kappa >= :data:`KAPPA_MIN`.
+is stable to a tilt. Quasi-steady forces, as in (2.1)-(2.4); and the section's frame
+is singular where the mid-plane is centred, so the trajectory must keep
+kappa >= :data:`KAPPA_MIN`.
+
+Contact. The hard contact of section 5 (uniform or rough surfaces) touches along
+the whole generator where the line of centres meets the surfaces, with every
+section at the constraint |r + z gamma| = eps*. A tilt would carry one end
+through it (first order in a radial tilt, second order in a tangential one), so
+while in contact the axis stays parallel, and a tilt lives only in the free
+flights between a lift-off and the next touch, which starts each of them
+aligned. :func:`tilt_in_flights` integrates the tilt equation over each flight of
+a run with contact phases, from unit tilts at its start: how far a tilt seeded
+at a lift-off (by an imperfection of the device) can grow before the next touch
+realigns the axis. The compliant contact holds a tilt by the asperities'
+elasticity, which this module does not model.
 """
 
 from __future__ import annotations
@@ -58,11 +70,15 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.linalg import expm
 
+from dynamics.contact.laws import COMPLIANT
+from dynamics.contact.reduced import FREE
+from dynamics.trajectory import PHASE_CODES
 from lubrication.geometry import Annulus, Fluid, FluidForces, Motion
 from lubrication.kernels import KernelModel
 from lubrication.registry import kernel_model
 
-__all__ = ["KAPPA_MIN", "TiltHistory", "strip_forces", "tilt_coefficients", "tilt_history"]
+__all__ = ["KAPPA_MIN", "FlightTilts", "TiltHistory", "flights", "strip_forces", "tilt_coefficients",
+           "tilt_history", "tilt_in_flights"]
 
 #: The smallest eccentricity ratio taken: a section's frame (e_eps, e_chi) turns as 1/eps under a displacement.
 KAPPA_MIN = 1e-3
@@ -203,15 +219,19 @@ class TiltHistory:
 
 
 def _columns(trajectory) -> dict:
+    """The run's columns the tilt equation reads, one row per time (at a switch, the phase before it)."""
     if trajectory.dimensionless or trajectory.equations != "full":
         msg = "tilt_history takes a run of the full equations (2.1)-(2.4) in SI units"
         raise ValueError(msg)
-    if "phase" in trajectory.columns:
-        msg = "tilt_history models the free film: a run with contact phases is out of its range"
+    phase = trajectory.columns.get("phase")
+    if phase is not None and np.any(phase == PHASE_CODES[COMPLIANT]):
+        msg = ("a run with the compliant contact holds a tilt by the asperities' elasticity, which the tilt "
+               "equation leaves out: take a run with the hard contact")
         raise ValueError(msg)
     t, unique = np.unique(trajectory.t, return_index=True)
-    return {name: trajectory.columns[name][unique] for name in
-            ("one_minus_kappa", "kappa_dot", "phi", "phi_dot", "omega_a", "omega_b")} | {"t": t}
+    names = ("one_minus_kappa", "kappa_dot", "phi", "phi_dot", "omega_a", "omega_b") + (() if phase is None
+                                                                                         else ("phase",))
+    return {name: trajectory.columns[name][unique] for name in names} | {"t": t}
 
 
 def _matrix(model, ap, fluid, row, spin_rate) -> np.ndarray:
@@ -262,6 +282,10 @@ def tilt_history(trajectory, apparatus, forces: str | KernelModel = "stokes-exac
     rows = np.flatnonzero(inside)
     if rows.size < 2:
         raise ValueError(f"t_span: the run has {rows.size} row(s) in {t0!r}..{t1!r} s, at least 2 are needed")
+    if "phase" in cols and np.any(cols["phase"][rows[1:-1]] != PHASE_CODES[FREE]):
+        msg = (f"t_span: {t0!r}..{t1!r} s holds contact phases, where the line contact keeps the axis parallel: "
+               "the span must lie within one free flight (tilt_in_flights takes each)")
+        raise ValueError(msg)
     _check_kappa(1.0 - cols["one_minus_kappa"][rows])
     ap = apparatus
     fluid = Fluid(nu=ap.nu, rho=ap.rho)
@@ -287,3 +311,64 @@ def tilt_history(trajectory, apparatus, forces: str | KernelModel = "stokes-exac
     eigen = np.linalg.eigvals(matrices)
     worst = eigen[np.arange(t.size), np.argmax(eigen.real, axis=1)]
     return TiltHistory(t=t, gain=gain, frozen_growth=worst.real, frozen_frequency=np.abs(worst.imag))
+
+
+@dataclass(frozen=True)
+class FlightTilts:
+    """A tilt over each free flight of a run with contact phases (:func:`tilt_in_flights`).
+
+    Attributes
+    ----------
+    start, end : ndarray
+        Each flight's start (a lift-off, or the release) and end (the next touch, or the run's end) (s).
+    gain : ndarray
+        The largest gain over the flight of the worst unit tilt at its start (:attr:`TiltHistory.gain`).
+    frozen_growth : ndarray
+        The largest growth rate of the frozen tilt equation over the flight (1/s).
+    """
+
+    start: np.ndarray
+    end: np.ndarray
+    gain: np.ndarray
+    frozen_growth: np.ndarray
+
+    @property
+    def largest_gain(self) -> float:
+        """The largest gain over every flight; 1 for a run with none (a tilt never starts)."""
+        return float(np.max(self.gain, initial=1.0))
+
+
+def flights(trajectory) -> list[tuple[float, float]]:
+    """The free flights of a run, (start, end) in s: from the release if it starts free and from each lift-off,
+    to the next touch or the run's end."""
+    free = PHASE_CODES[FREE]
+    t = trajectory.columns["t"]
+    start = float(t[0]) if trajectory.columns["phase"][0] == free else None
+    out = []
+    for event in sorted(trajectory.events, key=lambda event: event["t"]):
+        if event["name"] == "lift":
+            start = float(event["t"])
+        elif event["name"] == "touch" and start is not None:
+            out.append((start, float(event["t"])))
+            start = None
+    if start is not None:
+        out.append((start, float(t[-1])))
+    return out
+
+
+def tilt_in_flights(trajectory, apparatus, forces: str | KernelModel = "stokes-exact", *,
+                    substeps: int = SUBSTEPS) -> FlightTilts:
+    """:func:`tilt_history` over each free flight of ``trajectory``, a run of the full equations with the hard
+    contact (module docstring: contact), with rows dense enough to interpolate (every step).
+
+    ``forces`` and ``substeps`` as for :func:`tilt_history`.
+    """
+    if "phase" not in trajectory.columns:
+        msg = "tilt_in_flights takes a run with contact phases; a free run is one flight: take tilt_history"
+        raise ValueError(msg)
+    model = _per_length(kernel_model(forces) if isinstance(forces, str) else forces)
+    spans = [span for span in flights(trajectory) if span[1] > span[0]]
+    histories = [tilt_history(trajectory, apparatus, model, t_span=span, substeps=substeps) for span in spans]
+    return FlightTilts(start=np.array([span[0] for span in spans]), end=np.array([span[1] for span in spans]),
+                       gain=np.array([history.largest_gain for history in histories]),
+                       frozen_growth=np.array([float(np.max(history.frozen_growth)) for history in histories]))

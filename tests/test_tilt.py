@@ -15,7 +15,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from dynamics import Initial, Limits, ValidityWarning, preset, simulate
-from dynamics.tilt import KAPPA_MIN, _matrix, strip_forces, tilt_coefficients, tilt_history
+from dynamics.contact.reduced import ContactParams
+from dynamics.contact.roughness import RoughContact
+from dynamics.tilt import KAPPA_MIN, _matrix, flights, strip_forces, tilt_coefficients, tilt_history, tilt_in_flights
 from lubrication import Annulus, Fluid, Motion
 from lubrication.kernels import KernelModel
 from lubrication.registry import kernel_model
@@ -252,3 +254,46 @@ def test_out_of_range_inputs_are_refused_naming_them(release):
                      length=L), MOTION, OIL, (0.0, 0.0))
     with pytest.raises(ValueError, match="t_span"):
         tilt_history(release, STEEL, t_span=(20.0, 30.0))
+
+
+@pytest.fixture(scope="module")
+def rough_run():
+    """The apparatus on rough surfaces that turn with the cylinders (the rough-surface study's scene), 8 s, every
+    step: free flights between contacts."""
+    rough = RoughContact.from_rolled_length(ContactParams(1.0 - 50e-6 / (STEEL.b - STEEL.a), math.radians(5.0)),
+                                            0.5, 1e-3, STEEL.a, STEEL.b, seed=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ValidityWarning)
+        return simulate(STEEL, Initial(kappa=0.5, phi=0.5), t_end=8.0, contact=rough,
+                        limits=Limits(on_invalid="warn", max_gap_reynolds=None))
+
+
+def test_a_flights_tilt_is_that_of_the_free_run_from_its_lift_off(rough_run):
+    """Each flight is the free motion from its lift-off until the touch: the free run of smooth walls from the
+    lift-off's state, whose rows are other steps, gives the same gain over the flight. The product of
+    exponentials on the matrix linear between rows is second order in the rows' spacing: 1e-3 here."""
+    tilts = tilt_in_flights(rough_run, STEEL)
+    spans = flights(rough_run)
+    lifts = sum(event["name"] == "lift" for event in rough_run.events)
+    assert len(spans) == lifts + 1 and tilts.start.size == len(spans)  # the release falls free to the first touch
+    assert spans[0][0] == 0.0 and np.all(tilts.end > tilts.start)
+    cols = rough_run.columns
+    for i in (1, int(np.argmax(tilts.gain))):
+        start, end = spans[i]
+        row = np.flatnonzero(cols["t"] == start)[-1]  # the flight's first row, after the contact phase's last
+        assert cols["phase"][row] == 0
+        initial = Initial(kappa=cols["kappa"][row], phi=cols["phi"][row], kappa_dot=cols["kappa_dot"][row],
+                          phi_dot=cols["phi_dot"][row], omega_a=cols["omega_a"][row], omega_b=cols["omega_b"][row])
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ValidityWarning)
+            free = simulate(STEEL, initial, t_end=end - start, limits=Limits(on_invalid="warn", max_gap_reynolds=None))
+        assert free.columns["kappa"][-1] == pytest.approx(cols["kappa"][cols["t"] == end][0], rel=1e-6)
+        assert tilt_history(free, STEEL).largest_gain == pytest.approx(tilts.gain[i], rel=1e-3)
+
+
+def test_a_span_across_contact_and_a_run_without_flights_are_refused(rough_run, release):
+    start, end = flights(rough_run)[1]
+    with pytest.raises(ValueError, match="t_span.*contact phases"):
+        tilt_history(rough_run, STEEL, t_span=(start, end + 0.5))
+    with pytest.raises(ValueError, match="contact phases"):
+        tilt_in_flights(release, STEEL)

@@ -20,7 +20,10 @@ Table 3 (steel, 500 cSt), each 60 s from the release kappa = 0.5, phi = 0.5 rad:
 * the slopes :data:`SLOPES`, uniform and rough (:data:`SLOPE_SEEDS` realisations):
   mean speed and share of the time locked;
 * the uniform sigma that rolls at the rough ensemble's mean speed: the paper's
-  kappa* read as an effective value.
+  kappa* read as an effective value;
+* a tilt of the inner cylinder's axis over the free flights between contacts of
+  the ensemble's realisations (:func:`dynamics.tilt.tilt_in_flights`): how far a
+  tilt seeded at a lift-off grows before the next touch realigns the axis.
 
 ``python -m validation.rough_experiments`` runs it (minutes) and stores the numbers
 in ``docs/rough_experiments/rough_experiments.json``; ``python -m
@@ -142,6 +145,20 @@ def _series(run) -> dict:
                                    for k in ("x_b", "phi", "one_minus_kappa")}}
 
 
+def _tilt(ap) -> dict:
+    """Per realisation of the ensemble, run again with a row at every step: its free flights' durations and the
+    largest gain of a unit tilt over each (:func:`dynamics.tilt.tilt_in_flights`, the exact Stokes forces)."""
+    from dynamics.tilt import tilt_in_flights
+
+    per_seed = []
+    for seed in range(SEEDS):
+        run, _ = _run([f"contact.seed={seed}", "run.output_interval=none"])
+        flights = tilt_in_flights(run, ap)
+        per_seed.append({"seed": seed, "duration": (flights.end - flights.start).tolist(),
+                         "gain": flights.gain.tolist(), "frozen_growth": flights.frozen_growth.tolist()})
+    return {"forces": "stokes-exact", "realisations": per_seed}
+
+
 def compute(log=print) -> dict:
     start = time.perf_counter()
     showcase = {}
@@ -185,6 +202,8 @@ def compute(log=print) -> dict:
         slopes.append({"slope_deg": slope, "uniform": _numbers(uniform, ap),
                        "rough": ensemble_statistics(rough, by=(), numbers=("mean_speed_late", "locked_fraction_late",
                                                                              "phi_rms_late"))[0]})
+    log(f"tilt over the free flights: {SEEDS} realisations")
+    tilt = _tilt(ap)
     log("uniform sigmas")
     uniform_speeds = []
     for sigma in SIGMAS:
@@ -196,7 +215,7 @@ def compute(log=print) -> dict:
         else None
     return {"scene": SCENE, "a": a, "b": b, "seeds": SEEDS, "showcase": showcase, "realisations": realisations,
             "ensemble": stats, "spectrum": spectrum, "slopes": slopes, "slope_seeds": SLOPE_SEEDS,
-            "sigmas": list(SIGMAS), "uniform_speeds": uniform_speeds, "sigma_effective": sigma_eff,
+            "sigmas": list(SIGMAS), "uniform_speeds": uniform_speeds, "sigma_effective": sigma_eff, "tilt": tilt,
             "wall_time_s": time.perf_counter() - start}
 
 
