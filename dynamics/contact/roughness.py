@@ -132,7 +132,7 @@ __all__ = ["CLIP_FLOOR", "CLIP_KNEE", "GAUSSIAN", "JET_ORDER", "MAX_MODES", "SPE
 CLIP_FLOOR = 0.1  # sigma and kappa* never fall below this fraction of their means
 CLIP_KNEE = 0.2  # ... and are left unchanged above this fraction
 # The series needs about 12/lambda modes; a shorter correlation than 12/MAX_MODES
-# (6e-4 rad) would cost more per evaluation than the whole contact model.
+# (6e-4 rad) would need a compiled field of more than 17 MB a surface, which every phase's args carry.
 MAX_MODES = 20_000
 _TAIL = 4.0 * math.log(1.0 / np.finfo(float).eps)  # c_k/c_1 < eps beyond k^2 = 1 + _TAIL/lambda^2
 _CHUNK = 4096  # samples per block when evaluating at many angles (memory ~ chunk x K)
@@ -277,7 +277,7 @@ def _jets(cos_coefficients: np.ndarray, sin_coefficients: np.ndarray) -> np.ndar
 def _heights_kernel(theta, jets):
     """Scalar twin of :meth:`SurfaceHeights.__call__`, with the curvature: f, f' and f'' at ``theta``.
 
-    From the table ``jets`` (:meth:`SurfaceHeights.jets`): the Taylor polynomial of degree
+    From the table ``jets`` (:attr:`SurfaceHeights.jets`): the Taylor polynomial of degree
     JET_ORDER at the nearest node, in u = (theta - theta_j)/h, |u| <= 1/2, and its first two
     derivatives by Horner's scheme, whatever the number of modes.
     """
