@@ -2,7 +2,7 @@ r"""How well ``snail fit`` recovers the roughness from a descent: its intervals 
 
 The paper suggests that "the unsteadiness offers insight into the variations of
 kappa*". :mod:`dynamics.fit` infers the roughness's amplitude and correlation
-length from a record X_b(t) by approximate Bayesian computation. This study asks
+length, and the friction, from a record X_b(t) by approximate Bayesian computation. This study asks
 whether its stated 90 % intervals hold, and how narrow they are, for the device of
 Table 3 (steel, 500 cSt) with the full equations (2.1)-(2.4), the exact Stokes
 forces and surfaces that turn with both cylinders, on 4 degrees, where every
@@ -61,6 +61,7 @@ on_invalid = "warn"
 [fit]
 "contact.roughness_amplitude" = {low = 0.1, high = 0.6}
 "contact.roughness_correlation" = {low = "0.5 mm", high = "5 mm", log = true}
+"contact.friction_angle" = {low = "2 deg", high = "10 deg"}
 """
 RECORDS = 40
 RATE = 25.0  # Hz: a camera's frames

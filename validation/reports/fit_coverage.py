@@ -7,6 +7,7 @@ nothing is run again.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from ..fit_coverage import RESULTS, checks_of, findings
@@ -17,7 +18,8 @@ __all__ = ["figures", "markdown", "write_outputs"]
 PAGE = RESULTS.parents[1] / "fit_coverage.md"
 ESTIMATES = RESULTS.with_name("estimates.png")
 _TITLES = {"contact.roughness_amplitude": ("amplitude (rms of sigma over its mean)", 1.0),
-           "contact.roughness_correlation": ("correlation length (mm)", 1e3)}
+           "contact.roughness_correlation": ("correlation length (mm)", 1e3),
+           "contact.friction_angle": ("friction angle (deg)", math.degrees(1.0))}
 
 
 def figures(result: dict) -> list[Path]:
