@@ -171,18 +171,19 @@ FREE_EVENTS = full.EVENT_NAMES
 COMPLIANT_EVENTS = full.EVENT_NAMES[:4]
 
 # part EVENTS of every phase's args: the first 7 numbers as dynamics.equations.full.run_args (free and compliant
-# phases) or dynamics.contact.full (contact phases), then this block.
+# phases) or dynamics.contact.full (contact phases), then this block, ending with the sizes of the surfaces'
+# tables (SurfaceHeights.jets) and the tables
 _XB_LIMIT, _XB0, _KSTAR, _OMK_STAR, _LOCKED, _SIGMA, _MU_F = range(7)  # the contact phases' first 7
 (_PASSIVE, _CLEARANCE0, _ALPHA, _AMPLITUDE, _KAPPA_MEAN, _GAP_MEAN, _MU_KINETIC, _MU_STATIC, _V_STRIBECK,
- _WEIGHT, _ELL, _DAMPING, _GAUSSIAN, _V_SLIP, _NORM, _N_A, _N_B, _JETS) = range(7, 25)
+ _WEIGHT, _ELL, _DAMPING, _GAUSSIAN, _V_SLIP, _NORM, _SIZE_A, _SIZE_B, _JETS) = range(7, 25)
 _A, _B = 0, 1  # in the parameter array of dynamics.equations.full
 
 
 @jit(inline="always")
 def _field(theta_a, theta_b, c):
     """kappa*, 1 - kappa*, k_a, k_b, k_aa, k_ab, k_bb at the body angles (:mod:`dynamics.contact.roughness`)."""
-    j = _JETS + int(c[_N_A])
-    return _local2_kernel(theta_a, theta_b, c[_JETS:j], c[j:j + int(c[_N_B])], c[_AMPLITUDE], c[_KAPPA_MEAN],
+    j = _JETS + int(c[_SIZE_A])
+    return _local2_kernel(theta_a, theta_b, c[_JETS:j], c[j:j + int(c[_SIZE_B])], c[_AMPLITUDE], c[_KAPPA_MEAN],
                           c[_GAP_MEAN])
 
 
