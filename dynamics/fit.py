@@ -292,25 +292,34 @@ def fit(times, x_b, scene_raw: dict, priors, *, draws: int = 2000, accept: float
 
 
 def coverage(scene_raw: dict, priors, truths, times, *, draws: int, accept: float = 0.1, seed: int = 0,
-             client=None) -> tuple[np.ndarray, list[FitResult]]:
+             client=None) -> tuple[np.ndarray, list[FitResult | None]]:
     """Whether each stated 90 % interval contains the truth, on data sets made by the model itself.
 
     For each row of ``truths`` (parameters in the order of ``priors``) a record is simulated with its
     own surfaces (a seed no draw of the table uses), then fitted against one reference table shared
-    by all. Returns (contained: (len(truths), len(priors)) booleans, the fits).
+    by all. A record that does not roll forward has nothing to fit (as for :func:`fit`, and as the
+    table leaves out such draws): it counts neither way. Returns (contained: (len(truths), len(priors)),
+    1.0 where the interval contains the truth, 0.0 where not, NaN for a record that does not roll; the
+    fits, None for such a record).
     """
     thetas, stats = reference_table(scene_raw, priors, draws, times, seed=seed, client=client)
     from dynamics.scenes import parse_scene
 
     ap = parse_scene(scene_raw, "<fit>").apparatus
-    contained, fits = [], []
-    for k, truth in enumerate(np.atleast_2d(truths)):
+    truths = np.atleast_2d(truths)
+    contained, fits = np.full(truths.shape, np.nan), []
+    for k, truth in enumerate(truths):
         record = simulate_record(scene_raw, priors, truth, 2**31 + k, times)
-        result = abc_posterior(priors, summary_statistics(times, record, ap.a, ap.b), thetas, stats, accept=accept)
+        try:
+            observed = summary_statistics(times, record, ap.a, ap.b)
+        except ValueError:  # the surfaces hold the device: no unsteadiness to read
+            fits.append(None)
+            continue
+        result = abc_posterior(priors, observed, thetas, stats, accept=accept)
         fits.append(result)
-        contained.append([result.interval[p.key][0] <= value <= result.interval[p.key][1]
-                          for p, value in zip(priors, truth)])
-    return np.array(contained), fits
+        contained[k] = [result.interval[p.key][0] <= value <= result.interval[p.key][1]
+                        for p, value in zip(priors, truth)]
+    return contained, fits
 
 
 def read_fit_scene(text: str, source: str = "<string>") -> tuple[dict, list[Prior]]:

@@ -42,3 +42,7 @@ def test_coverage_and_widths_are_read_as_stated():
     log = {**uniform, "low": 1.0, "high": 16.0, "log": True, "truth": [2.0] * 4, "estimate": [2.0] * 4,
            "interval": [[1.5, 3.0]] * 4}
     assert study._summary(log)["width"] == pytest.approx(0.25)
+    # a fifth record that did not roll has no fit, and counts neither way
+    held = {key: [*value, None] if isinstance(value, list) else value for key, value in uniform.items()}
+    held["truth"][-1] = 0.5
+    assert study._summary(held) == summary

@@ -37,7 +37,8 @@ from dynamics.fit import coverage, read_fit_scene
 
 from .checks import Check, at_least
 
-__all__ = ["ACCEPT", "DRAWS", "RATE", "RECORDS", "RESULTS", "SCENE", "checks_of", "compute", "findings"]
+__all__ = ["ACCEPT", "DRAWS", "RATE", "RECORDS", "RESULTS", "SCENE", "checks_of", "compute", "findings",
+           "fitted_records"]
 
 SCENE = """[apparatus]
 preset = "steel"
@@ -91,32 +92,40 @@ def compute(log=print) -> dict:
     for j, p in enumerate(priors):
         parameters.append({"key": p.key, "low": p.low, "high": p.high, "log": p.log,
                            "truth": truths[:, j].tolist(),
-                           "estimate": [fit.estimate[p.key] for fit in fits],
-                           "interval": [list(fit.interval[p.key]) for fit in fits],
-                           "contained": contained[:, j].tolist()})
+                           "estimate": [None if fit is None else fit.estimate[p.key] for fit in fits],
+                           "interval": [None if fit is None else list(fit.interval[p.key]) for fit in fits],
+                           "contained": [None if math.isnan(c) else bool(c) for c in contained[:, j]]})
+    fitted = next(fit for fit in fits if fit is not None)
     return {"scene": SCENE, "records": RECORDS, "rate_hz": RATE, "draws": DRAWS, "accept": ACCEPT,
-            "table_size": fits[0].table_size, "accepted": fits[0].accepted, "parameters": parameters,
+            "table_size": fitted.table_size, "accepted": fitted.accepted, "parameters": parameters,
             "wall_time_s": time.perf_counter() - start}
 
 
+def fitted_records(parameter: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(truth, estimate, interval, contained) of the records that roll (one that does not has no fit)."""
+    rows = [i for i, c in enumerate(parameter["contained"]) if c is not None]
+    return (np.array([parameter["truth"][i] for i in rows]), np.array([parameter["estimate"][i] for i in rows]),
+            np.array([parameter["interval"][i] for i in rows]).reshape(-1, 2),
+            np.array([parameter["contained"][i] for i in rows], dtype=bool))
+
+
 def _summary(parameter: dict) -> dict:
-    """Coverage, its binomial standard error at the nominal 90 %, the median width over the prior's, and the
-    median relative error of the estimates (in the logarithm for a log prior)."""
-    truth, estimate = np.array(parameter["truth"]), np.array(parameter["estimate"])
-    interval = np.array(parameter["interval"])
+    """Over the records that roll: coverage, its binomial standard error at the nominal 90 %, the median width
+    over the prior's, and the median relative error of the estimates (in the logarithm for a log prior)."""
+    truth, estimate, interval, contained = fitted_records(parameter)
     n = truth.size
     if parameter["log"]:
         width = np.log(interval[:, 1] / interval[:, 0]) / math.log(parameter["high"] / parameter["low"])
     else:
         width = (interval[:, 1] - interval[:, 0]) / (parameter["high"] - parameter["low"])
-    return {"coverage": float(np.mean(parameter["contained"])), "se": math.sqrt(0.9 * 0.1 / n),
+    return {"fitted": n, "coverage": float(np.mean(contained)), "se": math.sqrt(0.9 * 0.1 / n),
             "width": float(np.median(width)), "error": float(np.median(np.abs(estimate / truth - 1.0)))}
 
 
 def checks_of(result: dict) -> list[Check]:
     """The stated 90 % intervals contain the truth in at least 80 % of the records, for each parameter."""
     return [at_least(f"{p['key']}: share of the 90 % intervals that contain the truth", _summary(p)["coverage"],
-                     0.8, note=f"{result['records']} records") for p in result["parameters"]]
+                     0.8, note=f"{_summary(p)['fitted']} records that roll") for p in result["parameters"]]
 
 
 def findings(result: dict) -> list[dict]:
@@ -125,8 +134,10 @@ def findings(result: dict) -> list[dict]:
     for p in result["parameters"]:
         s = _summary(p)
         prior = "in the logarithm, " if p["log"] else ""
+        records = ("the records" if s["fitted"] == len(p["truth"]) else
+                   f"the {s['fitted']} records that roll (of {len(p['truth'])})")
         out.append({"name": p["key"],
-                    "text": f"intervals contain the truth in {s['coverage']:.0%} of the records (90 % if right, "
+                    "text": f"intervals contain the truth in {s['coverage']:.0%} of {records} (90 % if right, "
                             f"binomial standard error {s['se']:.0%}); their median width is {s['width']:.2f} of the "
                             f"prior's ({prior}{p['low']:.3g} to {p['high']:.3g}, SI); the estimates' median relative "
                             f"error is {s['error']:.0%}"})

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..fit_coverage import RESULTS, checks_of, findings
+from ..fit_coverage import RESULTS, checks_of, findings, fitted_records
 from .stored import checks_table, rewrite
 
 __all__ = ["figures", "markdown", "write_outputs"]
@@ -37,9 +37,8 @@ def figures(result: dict) -> list[Path]:
     fig, axes = plt.subplots(1, len(parameters), figsize=(4.2 * len(parameters), 4.0), layout="constrained")
     for ax, p in zip(np.atleast_1d(axes), parameters):
         title, scale = _TITLES.get(p["key"], (p["key"], 1.0))
-        truth, estimate = scale * np.array(p["truth"]), scale * np.array(p["estimate"])
-        interval = scale * np.array(p["interval"])
-        inside = np.array(p["contained"])
+        truth, estimate, interval, inside = fitted_records(p)
+        truth, estimate, interval = scale * truth, scale * estimate, scale * interval
         for mask, color, label in ((inside, "C0", "interval contains the truth"), (~inside, "C3", "it does not")):
             ax.errorbar(truth[mask], estimate[mask], yerr=[estimate[mask] - interval[mask, 0],
                                                           interval[mask, 1] - estimate[mask]],
