@@ -11,12 +11,21 @@ on first use), and asks for setuptools' own requirements only.
 from __future__ import annotations
 
 import os
+import re
+import tomllib
+from pathlib import Path
 
 from setuptools import build_meta as _setuptools
 from setuptools.build_meta import *  # noqa: F403 - every hook of the PEP 517 interface, as setuptools has it
 
-#: What compiling the kernels imports (numba and the default scene's dependencies).
-KERNEL_REQUIREMENTS = ["numpy>=1.26", "scipy>=1.11", "numba>=0.59", "pint>=0.23"]
+#: What compiling the kernels imports (numba and the default scene's dependencies), as the project pins them.
+KERNEL_PACKAGES = ("numpy", "scipy", "numba", "pint")
+
+
+def _kernel_requirements() -> list[str]:
+    project = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())["project"]
+    return [requirement for requirement in project["dependencies"]
+            if re.split(r"[<>=!~ ;\[]", requirement, maxsplit=1)[0].lower() in KERNEL_PACKAGES]
 
 
 def _compiles_kernels() -> bool:
@@ -24,5 +33,5 @@ def _compiles_kernels() -> bool:
 
 
 def get_requires_for_build_wheel(config_settings=None):
-    extra = KERNEL_REQUIREMENTS if _compiles_kernels() else []
+    extra = _kernel_requirements() if _compiles_kernels() else []
     return [*_setuptools.get_requires_for_build_wheel(config_settings), *extra]
