@@ -35,31 +35,14 @@ import numpy as np
 from dynamics.equations.limits import ValidityWarning
 from dynamics.fit import coverage, read_fit_scene
 
+from . import rough_experiments
 from .checks import Check, at_least
 
 __all__ = ["ACCEPT", "DRAWS", "RATE", "RECORDS", "RESULTS", "SCENE", "checks_of", "compute", "findings",
            "fitted_records"]
 
-SCENE = """[apparatus]
-preset = "steel"
-[fluid]
-nu = "500 cSt"
-[incline]
-alpha = "4 deg"
-[initial]
-kappa = 0.5
-phi = 0.5
-[contact]
-sigma = "50 um"
-friction_angle = "5 deg"
-roughness_amplitude = 0.5
-roughness_correlation = "1 mm"
-[run]
-t_end = "60 s"
-output_interval = "0.01 s"
-max_gap_reynolds = "none"
-on_invalid = "warn"
-[fit]
+#: The rough-surface study's scene on 4 degrees, where every realisation rolls, with the unknowns and their priors.
+SCENE = rough_experiments.SCENE.replace('alpha = "2.4 deg"', 'alpha = "4 deg"') + """[fit]
 "contact.roughness_amplitude" = {low = 0.1, high = 0.6}
 "contact.roughness_correlation" = {low = "0.5 mm", high = "5 mm", log = true}
 "contact.friction_angle" = {low = "2 deg", high = "10 deg"}
